@@ -1,0 +1,91 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: earthquake-like (EQ) model of friction.
+
+   fix ID group eq/contacts kc seed keyword values ...
+
+   Each atom of the group is one contact: a spring of stiffness k_i
+   between the atom (top end, on the slider) and an anchor (bottom end, on
+   the substrate) stored per atom.  A contact breaks when its force
+   reaches k_i x_si, with the threshold x_si drawn from P_c; it re-forms
+   with a stretch drawn from R.  See doc/src/fix_eq_contacts.rst.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(eq/contacts,FixEQContacts);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_EQ_CONTACTS_H
+#define LMP_FIX_EQ_CONTACTS_H
+
+#include "fix.h"
+
+#include "eq_distribution.h"
+
+namespace LAMMPS_NS {
+
+class FixEQContacts : public Fix {
+ public:
+  FixEQContacts(class LAMMPS *, int, char **);
+  ~FixEQContacts() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void min_setup(int) override;
+  void post_force(int) override;
+  void post_force_respa(int, int, int) override;
+  void min_post_force(int) override;
+  double compute_scalar() override;
+  double compute_vector(int) override;
+
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+  void *extract(const char *, int &) override;
+
+  // columns of the per-atom state (also the per-atom output array)
+  enum { STRETCH, THRESHOLD, FORCE, NBREAK, STIFFNESS, ANCHOR, NCOL };
+
+ private:
+  double kc;
+  bigint seed;
+  int idir;          // sliding direction 0,1,2
+  int exact;         // 1: threshold crossing resolved exactly within a step
+  int start_reform;  // 1: initial stretch drawn from R, else 0
+  int ilevel_respa;
+
+  feq::DistributionSpec threshold, reform, stiffness;
+  bool reform_point, stiffness_const;
+  double reform_value;
+
+  double **state;    // per-atom state, NCOL columns (array_atom)
+
+  // local sums of the last force evaluation; reduced on demand
+  double local_sum[6];
+  double global_sum[6];
+  bigint local_breaks_total, breaks_offset;
+  bigint reduced_step;
+  int reduced_valid;
+
+  void apply(bool allow_breaks);
+  void init_contact(int i);
+  double resolve_breaks(int i, double s);
+  void reduce();
+  double unwrapped(int i) const;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,121 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   FRICTION-EQ package: one-dimensional probability distributions used by
+   the EQ model (breaking thresholds P_c, re-forming stretches R,
+   per-contact stiffness factors) and by the master-equation solver.
+
+   LAMMPS-free.  Every distribution provides its density, both tails of its
+   cumulative distribution with full relative precision, both inverse
+   tails, and the exact integrals the master-equation solver needs.
+------------------------------------------------------------------------- */
+
+#ifndef FEQ_DISTRIBUTION_H
+#define FEQ_DISTRIBUTION_H
+
+#include "eq_random.h"
+
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace feq {
+
+// Error in a user's specification (bad value, missing file, ...).
+// The message names the keyword and, where it applies, the allowed values.
+class SpecError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Distribution {
+ public:
+  virtual ~Distribution() = default;
+
+  virtual std::string describe() const = 0;    // e.g. "uniform 0.75 1.25"
+  virtual double lower() const = 0;            // support [lower, upper], may be infinite
+  virtual double upper() const = 0;
+  virtual double pdf(double x) const = 0;      // density (0 for a point mass)
+  virtual double cdf(double x) const = 0;      // P(X <= x)
+  virtual double sf(double x) const = 0;       // P(X > x), full precision in the upper tail
+  virtual double quantile(double p) const = 0; // smallest x with cdf(x) >= p
+  virtual double isf(double q) const = 0;      // x with sf(x) = q
+  virtual double sf_integral(double a, double b) const = 0;     // int_a^b sf(x) dx
+  virtual double partial_mean(double a, double b) const = 0;    // int_a^b x dP(x), (a,b]
+  virtual double mean() const = 0;
+  virtual double second_moment() const = 0;
+  virtual bool is_point() const { return false; }
+  // points where the density is not smooth (quadrature break points)
+  virtual std::vector<double> breakpoints() const { return {}; }
+
+  double variance() const { return second_moment() - mean() * mean(); }
+  double hazard(double x) const;    // pdf/sf: breaking rate per unit stretch
+
+  // Inverse-transform draw from a uniform variate (the tail with the
+  // better precision is used).
+  double sample(const Uniform &u) const;
+  // Draw conditioned on X > lo.  Returns NaN when P(X > lo) = 0.
+  double sample_above(double lo, const Uniform &u) const;
+};
+
+using DistributionPtr = std::shared_ptr<const Distribution>;
+
+DistributionPtr make_uniform(double lo, double hi);
+// normal(mean, sd) truncated to x > trunc (trunc may be -infinity)
+DistributionPtr make_gaussian(double mean, double sd, double trunc);
+// P_c0(x) = (2/xs) u^3 exp(-u^2), u = x/xs (the paper's realistic thresholds)
+DistributionPtr make_realistic(double xs);
+DistributionPtr make_delta(double x0);
+// density linear between the points (x_k, p_k), zero outside, normalized
+DistributionPtr make_table(const std::vector<double> &x, const std::vector<double> &p,
+                           const std::string &label);
+
+// Read the section KEYWORD of a table file:
+//   # comment lines
+//   KEYWORD
+//   N n
+//   (blank line)
+//   1 x_1 p_1
+//   ...
+//   n x_n p_n
+// Throws SpecError naming the file, keyword and line on any problem.
+void read_table_file(const std::string &path, const std::string &keyword, std::vector<double> &x,
+                     std::vector<double> &p);
+
+// Standard normal helpers (exposed for tests).
+double normal_cdf(double z);
+double normal_sf(double z);
+double normal_quantile(double p);    // Wichura AS241 (PPND16), ~1e-16 relative
+
+/* ----------------------------------------------------------------------
+   Keyword parsing shared by fix eq/contacts, the eq/me command and the
+   eq-me tool, so that all three accept the same syntax and report the
+   same errors.
+------------------------------------------------------------------------- */
+
+enum class Role { THRESHOLD, REFORM, STIFFNESS };
+
+struct DistributionSpec {
+  DistributionPtr dist;    // null for "reform none" (contacts never re-form)
+  std::string text;        // canonical text, e.g. "uniform 0.75 1.25"
+};
+
+// number parser: converts one token or throws (LAMMPS passes utils::numeric)
+using NumberParser = std::function<double(const std::string &)>;
+// file resolver: maps a file name to a readable path (LAMMPS passes its
+// potential-file lookup); the identity when empty
+using FileResolver = std::function<std::string(const std::string &)>;
+
+// Parses the values after a keyword, starting at args[pos]; advances pos.
+DistributionSpec parse_distribution(Role role, const std::vector<std::string> &args, size_t &pos,
+                                    const NumberParser &number, const FileResolver &resolve = {});
+
+// Strict default number parser (whole token, finite).
+double parse_number(const std::string &token);
+
+const char *role_keyword(Role role);
+const char *role_styles(Role role);
+
+}    // namespace feq
+
+#endif

@@ -1,0 +1,73 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   FRICTION-EQ package: stateless, counter-based random numbers.
+
+   Every random number of a contact is a pure function of
+   (seed, atom tag, event counter, stream): Philox4x32-10 (Salmon et al.,
+   SC'11, "Parallel random numbers: as easy as 1, 2, 3") with key = seed
+   and counter = (tag, event, stream).  No generator state exists, so the
+   draws do not depend on the MPI decomposition, on the order in which
+   contacts are visited, or on restarts: only the per-contact event
+   counter has to be kept (it travels with the atom and is in restarts).
+------------------------------------------------------------------------- */
+
+#ifndef FEQ_RANDOM_H
+#define FEQ_RANDOM_H
+
+#include <array>
+#include <cstdint>
+
+namespace feq {
+
+using Philox4x32 = std::array<uint32_t, 4>;
+
+// Philox4x32 with R rounds (R = 10 is the reference generator).
+inline Philox4x32 philox4x32(Philox4x32 ctr, std::array<uint32_t, 2> key, int rounds = 10)
+{
+  const uint64_t M0 = 0xD2511F53u, M1 = 0xCD9E8D57u;
+  const uint32_t W0 = 0x9E3779B9u, W1 = 0xBB67AE85u;
+  for (int r = 0; r < rounds; ++r) {
+    if (r > 0) {
+      key[0] += W0;
+      key[1] += W1;
+    }
+    const uint64_t p0 = M0 * ctr[0];
+    const uint64_t p1 = M1 * ctr[2];
+    const uint32_t hi0 = uint32_t(p0 >> 32), lo0 = uint32_t(p0);
+    const uint32_t hi1 = uint32_t(p1 >> 32), lo1 = uint32_t(p1);
+    ctr = {hi1 ^ ctr[1] ^ key[0], lo1, hi0 ^ ctr[3] ^ key[1], lo0};
+  }
+  return ctr;
+}
+
+// Streams: independent sequences of one contact.
+enum Stream : uint32_t { STREAM_THRESHOLD = 0, STREAM_REFORM = 1, STREAM_STIFFNESS = 2 };
+
+// A uniform variate u in the open interval (0,1) together with 1-u, both
+// exact (52-bit grid shifted by half a unit): samplers use whichever tail
+// keeps full relative precision.
+struct Uniform {
+  double u;
+  double one_minus_u;
+};
+
+inline Uniform uniform_from_bits(uint64_t bits)
+{
+  const uint64_t k = bits >> 12;    // 52 random bits: u and 1-u exact near 0 and 1
+  const double scale = 1.0 / 4503599627370496.0;    // 2^-52
+  return {(double(k) + 0.5) * scale, (double((uint64_t(1) << 52) - k) - 0.5) * scale};
+}
+
+// The draw of one contact: seed (> 0), global atom tag, event counter
+// (number of earlier breaks of that contact) and stream.
+inline Uniform draw(uint64_t seed, uint64_t tag, uint64_t event, uint32_t stream)
+{
+  const Philox4x32 out = philox4x32(
+      {uint32_t(tag), uint32_t(tag >> 32), uint32_t(event),
+       (uint32_t(event >> 32) << 8) | (stream & 0xffu)},
+      {uint32_t(seed), uint32_t(seed >> 32)});
+  return uniform_from_bits((uint64_t(out[0]) << 32) | out[1]);
+}
+
+}    // namespace feq
+
+#endif

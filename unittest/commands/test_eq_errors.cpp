@@ -1,0 +1,211 @@
+// Bad input to the FRICTION-EQ styles gives a LAMMPS error that names the
+// command, the keyword and the allowed values (never a crash or NaN).
+// Uses LAMMPS' own unittest helpers (unittest/testing/core.h).
+#include "lammps.h"
+
+#include "atom.h"
+#include "group.h"
+#include "input.h"
+#include "modify.h"
+
+#include "testing/core.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+
+#include <cstdio>
+#include <fstream>
+#include <mpi.h>
+
+bool verbose = false;
+
+namespace {
+
+const std::string TABLE = std::string(FEQ_SOURCE_DIR) + "/potentials/eq_thresholds.table";
+
+class EQContactsErrors : public LAMMPSTest {
+ protected:
+  void InitSystem() override
+  {
+    HIDE_OUTPUT([&] {
+      command("units lj");
+      command("dimension 2");
+      command("atom_style atomic");
+      command("lattice sq 1.0");
+      command("region box block 0 4 0 4 -0.5 0.5");
+      command("create_box 1 box");
+      command("create_atoms 1 box");
+      command("mass 1 1.0");
+      command("group nobody empty");
+    });
+  }
+  // "fix c all eq/contacts " + rest
+  void fix(const std::string &rest) { command("fix c all eq/contacts " + rest); }
+};
+
+}    // namespace
+
+TEST_F(EQContactsErrors, ValidCommandsAreAccepted)
+{
+  HIDE_OUTPUT([&] {
+    fix("1.0 5 threshold uniform 0.75 1.25");
+    command("unfix c");
+    fix("2.0 7 threshold gaussian 1.0 0.2 reform gaussian 0.1 0.02 stiffness uniform 0.5 1.5 "
+        "dir y crossing step start reform");
+    command("unfix c");
+    fix("1.0 7 threshold realistic 1.0 reform none stiffness gaussian 1.0 0.1");
+    command("unfix c");
+    fix("1.0 7 threshold table " + TABLE + " REALISTIC_1.0 reform uniform 0.0 0.1");
+  });
+  ASSERT_NE(lmp->modify->find_fix("c"), -1);
+}
+
+TEST_F(EQContactsErrors, Arguments)
+{
+  TEST_FAILURE(".*ERROR: Illegal fix eq/contacts command: expected 'fix ID group eq/contacts kc "
+               "seed threshold.*",
+               fix("1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: kc must be > 0 \\(got -1\\).*",
+               fix("-1 5 threshold uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: kc must be > 0 \\(got 0\\).*",
+               fix("0 5 threshold uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: Expected floating point parameter instead of 'abc'.*",
+               fix("abc 5 threshold uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: seed must be a positive integer \\(got 0\\).*",
+               fix("1.0 0 threshold uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: seed must be a positive integer \\(got -3\\).*",
+               fix("1.0 -3 threshold uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: Expected integer parameter instead of '1.5'.*",
+               fix("1.0 1.5 threshold uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: the threshold keyword is required; allowed styles: "
+               "uniform, gaussian, realistic, table.*",
+               fix("1.0 5 reform delta 0.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts unknown keyword 'thresholds'; allowed: threshold, reform, "
+               "stiffness, dir, crossing, start.*",
+               fix("1.0 5 thresholds uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: group nobody has no atoms.*",
+               command("fix c nobody eq/contacts 1.0 5 threshold uniform 0.75 1.25"););
+}
+
+TEST_F(EQContactsErrors, Threshold)
+{
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold uniform: need 0 <= lo < hi \\(got lo = 1.25, "
+               "hi = 0.75\\).*",
+               fix("1.0 5 threshold uniform 1.25 0.75"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold uniform: expected 2 values \\(lo hi\\), got 1.*",
+               fix("1.0 5 threshold uniform 1.25"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold uniform: expected a number for hi, got 'x'.*",
+               fix("1.0 5 threshold uniform 0.75 x"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold unknown style 'weibull'; allowed: uniform, "
+               "gaussian, realistic, table.*",
+               fix("1.0 5 threshold weibull 1 2"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold: missing style; allowed: uniform, gaussian, "
+               "realistic, table.*",
+               fix("1.0 5 threshold"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold gaussian: need a finite mean and sd > 0 \\(got "
+               "mean = 1, sd = -0.1\\).*",
+               fix("1.0 5 threshold gaussian 1.0 -0.1"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold realistic: need xs > 0 \\(got -2\\).*",
+               fix("1.0 5 threshold realistic -2"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold table: cannot open table file "
+               "'no_such_file.table'.*",
+               fix("1.0 5 threshold table no_such_file.table KEY"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold table: keyword 'NOPE' not found in table file.*",
+               fix("1.0 5 threshold table " + TABLE + " NOPE"););
+  {
+    std::ofstream out("eq_bad.table");
+    out << "BAD\nN 3\n\n1 0.5 1.0\n2 0.7 1.0\n3 0.6 1.0\n"
+        << "MALFORMED\nN 2\n\n1 0.5\n2 0.7 1.0\n"
+        << "NEGX\nN 2\n\n1 -0.5 1.0\n2 0.7 1.0\n";
+  }
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold table eq_bad.table BAD: stretches must "
+               "increase strictly \\(point 3\\).*",
+               fix("1.0 5 threshold table eq_bad.table BAD"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold table: table file 'eq_bad.table' line 10: "
+               "expected 'index x P\\(x\\)'.*",
+               fix("1.0 5 threshold table eq_bad.table MALFORMED"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold table: breaking stretches must be >= 0.*",
+               fix("1.0 5 threshold table eq_bad.table NEGX"););
+  std::remove("eq_bad.table");
+}
+
+TEST_F(EQContactsErrors, ReformStiffnessAndOptions)
+{
+  TEST_FAILURE(".*ERROR: Fix eq/contacts reform unknown style 'realistic'; allowed: delta, "
+               "uniform, gaussian, none.*",
+               fix("1.0 5 threshold uniform 0.75 1.25 reform realistic 1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts reform uniform: need lo < hi \\(got lo = 0.3, hi = 0.1\\).*",
+               fix("1.0 5 threshold uniform 0.75 1.25 reform uniform 0.3 0.1"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts reform gaussian: need a finite mean and sd > 0.*",
+               fix("1.0 5 threshold uniform 0.75 1.25 reform gaussian 0.1 0"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: reform stretch 2 is not below the largest breaking "
+               "threshold 1.25.*",
+               fix("1.0 5 threshold uniform 0.75 1.25 reform delta 2.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts stiffness uniform: need 0 < lo < hi \\(got lo = -1, hi = "
+               "2\\).*",
+               fix("1.0 5 threshold uniform 0.75 1.25 stiffness uniform -1 2"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts stiffness gaussian: need mean > 0 \\(got -1\\).*",
+               fix("1.0 5 threshold uniform 0.75 1.25 stiffness gaussian -1 0.1"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts stiffness unknown style 'const'; allowed: constant, "
+               "uniform, gaussian.*",
+               fix("1.0 5 threshold uniform 0.75 1.25 stiffness const"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts dir: unknown value 'w'; allowed: x, y, z.*",
+               fix("1.0 5 threshold uniform 0.75 1.25 dir w"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts dir: missing value; allowed: x, y, z.*",
+               fix("1.0 5 threshold uniform 0.75 1.25 dir"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: dir z is not allowed in a 2d simulation; allowed: x, y.*",
+               fix("1.0 5 threshold uniform 0.75 1.25 dir z"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts crossing: unknown value 'half'; allowed: exact, step.*",
+               fix("1.0 5 threshold uniform 0.75 1.25 crossing half"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts start: unknown value 'hot'; allowed: relaxed, reform.*",
+               fix("1.0 5 threshold uniform 0.75 1.25 start hot"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: start reform needs contacts that re-form \\(reform none "
+               "given\\).*",
+               fix("1.0 5 threshold uniform 0.75 1.25 reform none start reform"););
+}
+
+// Problems that only show while running are reported with the contact.
+TEST_F(EQContactsErrors, RuntimeChecks)
+{
+  HIDE_OUTPUT([&] {
+    fix("1.0 5 threshold uniform 0.75 1.25 reform gaussian 2.0 0.01");
+    command("fix m all move linear 0.5 0.0 0.0");
+    command("timestep 1.0");
+  });
+  TEST_FAILURE(".*ERROR on proc 0: Fix eq/contacts: contact [0-9]+ re-formed with stretch 2.*, "
+               "which is not below the largest breaking threshold \\(1.25\\); check the reform "
+               "distribution.*",
+               command("run 10"););
+  HIDE_OUTPUT([&] {
+    command("unfix c");
+    fix("1.0 5 threshold uniform 0.75 1.25 reform delta 1.249");
+    command("unfix m");
+    command("fix m all move linear 1.9 0.0 0.0");    // < half the box per step
+  });
+  TEST_FAILURE(".*ERROR on proc 0: Fix eq/contacts: contact [0-9]+ broke more than 1000 times in "
+               "one step.*reduce the timestep.*",
+               command("run 2"););
+}
+
+TEST_F(EQContactsErrors, RequiresAtomIDs)
+{
+  HIDE_OUTPUT([&] {
+    command("clear");
+    command("atom_modify id no");
+    command("region box block 0 2 0 2 0 2");
+    command("create_box 1 box");
+    command("create_atoms 1 single 1 1 1");
+    command("mass 1 1.0");
+  });
+  TEST_FAILURE(".*ERROR: Fix eq/contacts requires atom IDs \\(atom_modify id yes\\).*",
+               fix("1.0 5 threshold uniform 0.75 1.25"););
+}
+
+int main(int argc, char **argv)
+{
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleMock(&argc, argv);
+  if (argc > 1 && std::string(argv[1]) == "-v") verbose = true;
+  const int rv = RUN_ALL_TESTS();
+  MPI_Finalize();
+  return rv;
+}

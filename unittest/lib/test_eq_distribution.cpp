@@ -1,0 +1,297 @@
+// Unit tests: distributions of FRICTION-EQ (thresholds, reform stretches,
+// stiffness factors) against independent quadrature and analytic forms.
+#include "eq_distribution.h"
+#include "eq_master_equation.h"
+#include "eq_random.h"
+
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+using namespace feq;
+using ::testing::HasSubstr;
+
+#ifndef FEQ_SOURCE_DIR
+#define FEQ_SOURCE_DIR "."
+#endif
+
+namespace {
+
+const double INF = std::numeric_limits<double>::infinity();
+
+struct Case {
+  const char *name;
+  DistributionPtr d;
+  double lo, hi;    // finite range that holds all but ~1e-15 of the mass
+};
+
+std::vector<Case> cases()
+{
+  std::vector<double> tx, tp;
+  for (int i = 0; i <= 40; ++i) {
+    tx.push_back(0.5 + 0.025 * i);
+    tp.push_back(1.0 + std::sin(0.3 * i) * 0.8);
+  }
+  return {{"uniform", make_uniform(0.75, 1.25), 0.7, 1.3},
+          {"gaussian_truncated", make_gaussian(0.4, 0.3, 0.0), -0.1, 3.0},
+          {"gaussian", make_gaussian(-0.2, 0.1, -INF), -1.2, 0.8},
+          {"realistic", make_realistic(1.3), -0.1, 9.0},
+          {"table", make_table(tx, tp, "sine"), 0.4, 1.6}};
+}
+
+double quad(const std::function<double(double)> &f, const Distribution &d, double a, double b)
+{
+  return integrate(f, a, b, d.breakpoints(), 400);
+}
+
+}    // namespace
+
+TEST(Normal, QuantileInvertsCdf)
+{
+  for (double p : {1e-300, 1e-100, 1e-20, 1e-8, 0.01, 0.2, 0.5, 0.7, 0.975, 1 - 1e-9, 1 - 1e-15}) {
+    const double z = normal_quantile(p);
+    const double back = p < 0.5 ? normal_cdf(z) : 1.0 - normal_sf(z);
+    // relative error in z of ~1e-16 moves p by ~z^2 1e-16 in the far tail
+    EXPECT_NEAR(back / p, 1.0, 4e-16 * (8.0 + z * z)) << "p = " << p;
+  }
+  EXPECT_NEAR(normal_quantile(0.975), 1.959963984540054, 1e-15);
+}
+
+TEST(Distributions, NormalizedAndConsistentTails)
+{
+  for (const auto &c : cases()) {
+    const Distribution &d = *c.d;
+    EXPECT_NEAR(quad([&](double x) { return d.pdf(x); }, d, c.lo, c.hi), 1.0, 1e-12) << c.name;
+    for (int i = 0; i <= 200; ++i) {
+      const double x = c.lo + (c.hi - c.lo) * i / 200.0;
+      EXPECT_NEAR(d.cdf(x) + d.sf(x), 1.0, 2e-15) << c.name << " x = " << x;
+      // cdf from independent quadrature of the density
+      EXPECT_NEAR(d.cdf(x), quad([&](double t) { return d.pdf(t); }, d, c.lo, x), 1e-12)
+          << c.name << " x = " << x;
+    }
+  }
+}
+
+TEST(Distributions, InverseTailsRoundTrip)
+{
+  for (const auto &c : cases()) {
+    const Distribution &d = *c.d;
+    for (double p : {1e-14, 1e-9, 1e-5, 0.001, 0.1, 0.3, 0.5, 0.7, 0.9, 0.999}) {
+      // x itself is only resolved to ~1e-16 absolute near a finite end of
+      // the support: a relative tolerance in p plus that absolute one
+      const double x = d.quantile(p);
+      EXPECT_NEAR(d.cdf(x), p, 1e-12 * p + 4e-16 * (1.0 + std::fabs(x)) * d.pdf(x) + 1e-17)
+          << c.name << " p = " << p;
+      const double y = d.isf(p);
+      EXPECT_NEAR(d.sf(y), p, 1e-12 * p + 4e-16 * (1.0 + std::fabs(y)) * d.pdf(y) + 1e-17)
+          << c.name << " q = " << p;
+    }
+  }
+  // tails that only an upper-tail implementation resolves
+  EXPECT_NEAR(make_realistic(1.0)->sf(make_realistic(1.0)->isf(1e-200)) / 1e-200, 1.0, 1e-12);
+  EXPECT_NEAR(make_gaussian(1.0, 0.1, 0.0)->sf(make_gaussian(1.0, 0.1, 0.0)->isf(1e-200)) / 1e-200, 1.0,
+              1e-10);
+}
+
+TEST(Distributions, IntegralsAndMomentsMatchQuadrature)
+{
+  for (const auto &c : cases()) {
+    const Distribution &d = *c.d;
+    const double m1 = quad([&](double x) { return x * d.pdf(x); }, d, c.lo, c.hi);
+    const double m2 = quad([&](double x) { return x * x * d.pdf(x); }, d, c.lo, c.hi);
+    EXPECT_NEAR(d.mean(), m1, 1e-12) << c.name;
+    EXPECT_NEAR(d.second_moment(), m2, 1e-12) << c.name;
+    EXPECT_NEAR(d.partial_mean(c.lo, c.hi), m1, 1e-12) << c.name;
+    const double a = c.lo + 0.3 * (c.hi - c.lo), b = c.lo + 0.6 * (c.hi - c.lo);
+    EXPECT_NEAR(d.partial_mean(a, b), quad([&](double x) { return x * d.pdf(x); }, d, a, b), 1e-12)
+        << c.name;
+    EXPECT_NEAR(d.sf_integral(c.lo - 0.5, b), quad([&](double x) { return d.sf(x); }, d, c.lo - 0.5, b),
+                1e-12)
+        << c.name;
+    // mean of a non-negative variable: int_0^inf sf
+    if (d.lower() >= 0.0) EXPECT_NEAR(d.sf_integral(0.0, c.hi), d.mean(), 1e-12) << c.name;
+  }
+}
+
+TEST(Distributions, RealisticClosedForms)
+{
+  const auto d = make_realistic(1.0);
+  EXPECT_NEAR(d->mean(), 0.75 * std::sqrt(M_PI), 1e-15);
+  EXPECT_NEAR(d->second_moment(), 2.0, 1e-15);
+  for (double x : {0.01, 0.3, 1.0, 2.0, 4.0}) {
+    EXPECT_NEAR(d->hazard(x), 2.0 * x * x * x / (1.0 + x * x), 1e-13 * (1 + x * x * x));
+    EXPECT_NEAR(d->sf(x), (1.0 + x * x) * std::exp(-x * x), 1e-16);
+  }
+  // small-x cdf keeps relative precision: cdf = W^2/2 - W^3/3 + W^4/8 ..., W = x^2
+  const double W = 1e-6;
+  EXPECT_NEAR(d->cdf(1e-3) / (W * W / 2 - W * W * W / 3 + W * W * W * W / 8), 1.0, 1e-14);
+  EXPECT_NEAR(d->quantile(d->cdf(1e-3)) / 1e-3, 1.0, 1e-13);
+}
+
+// Conditioned draws X > lo reproduce the conditional distribution (KS).
+TEST(Distributions, SampleAboveIsConditional)
+{
+  for (const auto &c : cases()) {
+    const Distribution &d = *c.d;
+    const double lo = d.quantile(0.4);
+    const double slo = d.sf(lo);
+    const int n = 20000;
+    std::vector<double> v(n);
+    for (int i = 0; i < n; ++i) {
+      v[i] = d.sample_above(lo, draw(9, i, 0, STREAM_THRESHOLD));
+      ASSERT_GT(v[i], lo) << c.name;
+    }
+    std::sort(v.begin(), v.end());
+    double dmax = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double F = 1.0 - d.sf(v[i]) / slo;
+      dmax = std::max(dmax, std::max(std::fabs(F - double(i) / n), std::fabs((i + 1.0) / n - F)));
+    }
+    EXPECT_LT(dmax, std::sqrt(-std::log(0.5e-4) / 2.0 / n)) << c.name;
+    // below the support: an ordinary draw
+    EXPECT_EQ(d.sample_above(-1e300, draw(1, 2, 3, STREAM_THRESHOLD)),
+              d.sample(draw(1, 2, 3, STREAM_THRESHOLD)));
+  }
+  // nothing above the support
+  EXPECT_TRUE(std::isnan(make_uniform(0.75, 1.25)->sample_above(1.3, draw(1, 1, 1, 0))));
+}
+
+TEST(Distributions, DeltaIsAPointMass)
+{
+  const auto d = make_delta(0.2);
+  EXPECT_TRUE(d->is_point());
+  EXPECT_EQ(d->sample(draw(1, 1, 1, 1)), 0.2);
+  EXPECT_EQ(d->cdf(0.1999), 0.0);
+  EXPECT_EQ(d->cdf(0.2), 1.0);
+  EXPECT_NEAR(d->sf_integral(-1.0, 1.0), 1.2, 1e-15);
+}
+
+/* ---------------------------------------------------------------------- */
+
+TEST(Tables, ReadPotentialsFile)
+{
+  const std::string path = std::string(FEQ_SOURCE_DIR) + "/potentials/eq_thresholds.table";
+  std::vector<double> x, p;
+  read_table_file(path, "UNIFORM_0.75_1.25", x, p);
+  const auto t = make_table(x, p, "u");
+  const auto u = make_uniform(0.75, 1.25);
+  for (double v : {0.7, 0.8, 1.0, 1.2, 1.3}) {
+    EXPECT_NEAR(t->cdf(v), u->cdf(v), 1e-15);
+    EXPECT_NEAR(t->sf_integral(0.0, v), u->sf_integral(0.0, v), 1e-15);
+  }
+  read_table_file(path, "REALISTIC_1.0", x, p);
+  const auto r = make_table(x, p, "r");
+  const auto ra = make_realistic(1.0);
+  // linear interpolation on a 0.01 grid: error ~ h^2 f''/8
+  for (double v : {0.3, 0.9, 1.5, 2.5}) EXPECT_NEAR(r->cdf(v), ra->cdf(v), 2e-5);
+  EXPECT_NEAR(r->mean(), ra->mean(), 2e-5);
+}
+
+TEST(Tables, ErrorsNameFileKeywordAndLine)
+{
+  std::vector<double> x, p;
+  try {
+    read_table_file("/nonexistent/file.table", "K", x, p);
+    FAIL();
+  } catch (const SpecError &e) {
+    EXPECT_THAT(e.what(), HasSubstr("cannot open table file '/nonexistent/file.table'"));
+  }
+  const std::string path = std::string(FEQ_SOURCE_DIR) + "/potentials/eq_thresholds.table";
+  try {
+    read_table_file(path, "NO_SUCH_KEY", x, p);
+    FAIL();
+  } catch (const SpecError &e) {
+    EXPECT_THAT(e.what(), HasSubstr("keyword 'NO_SUCH_KEY' not found"));
+  }
+  const std::string bad = "bad_table.tmp";
+  {
+    std::ofstream out(bad);
+    out << "KEY\nN 3\n\n1 0.5 1.0\n2 0.7 abc\n3 0.9 1.0\n"
+        << "SHORT\nN 4\n\n1 0.1 1\n2 0.2 1\n"
+        << "NEG\nN 2\n\n1 0.1 -1\n2 0.2 1\n";
+  }
+  try {
+    read_table_file(bad, "KEY", x, p);
+    FAIL();
+  } catch (const SpecError &e) {
+    EXPECT_THAT(e.what(), HasSubstr("line 5"));
+  }
+  try {
+    read_table_file(bad, "SHORT", x, p);
+    FAIL();
+  } catch (const SpecError &e) {
+    EXPECT_THAT(e.what(), HasSubstr("expected 4 points"));
+  }
+  read_table_file(bad, "NEG", x, p);
+  EXPECT_THROW(make_table(x, p, "neg"), SpecError);
+  std::remove(bad.c_str());
+}
+
+/* ---------------------------------------------------------------------- */
+
+namespace {
+std::string parse_error(Role role, std::vector<std::string> args)
+{
+  size_t pos = 0;
+  try {
+    parse_distribution(role, args, pos, parse_number);
+  } catch (const SpecError &e) {
+    return e.what();
+  }
+  return "no error";
+}
+}    // namespace
+
+TEST(Parse, ValidSpecs)
+{
+  size_t pos = 0;
+  std::vector<std::string> a{"uniform", "0.75", "1.25", "next"};
+  auto s = parse_distribution(Role::THRESHOLD, a, pos, parse_number);
+  EXPECT_EQ(pos, 3u);
+  EXPECT_EQ(s.text, "uniform 0.75 1.25");
+  pos = 0;
+  std::vector<std::string> b{"none"};
+  EXPECT_EQ(parse_distribution(Role::REFORM, b, pos, parse_number).dist, nullptr);
+  pos = 0;
+  std::vector<std::string> c{"constant"};
+  EXPECT_EQ(parse_distribution(Role::STIFFNESS, c, pos, parse_number).dist->mean(), 1.0);
+}
+
+TEST(Parse, ErrorsNameKeywordAndAllowedValues)
+{
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"uniform", "1.25", "0.75"}),
+            "threshold uniform: need 0 <= lo < hi (got lo = 1.25, hi = 0.75)");
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"uniform", "-0.1", "0.75"}),
+            "threshold uniform: need 0 <= lo < hi (got lo = -0.1, hi = 0.75)");
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"uniform", "1.0"}),
+            "threshold uniform: expected 2 values (lo hi), got 1");
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"uniform", "1.0", "x2"}),
+            "threshold uniform: expected a number for hi, got 'x2'");
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"weibull", "1"}),
+            "threshold unknown style 'weibull'; allowed: uniform, gaussian, realistic, table");
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {}),
+            "threshold: missing style; allowed: uniform, gaussian, realistic, table");
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"gaussian", "1.0", "0"}),
+            "threshold gaussian: need a finite mean and sd > 0 (got mean = 1, sd = 0)");
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"gaussian", "-1.0", "0.1"}),
+            "threshold gaussian: need mean > 0 (got -1)");
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"realistic", "0"}), "threshold realistic: need xs > 0 (got 0)");
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"table", "f"}),
+            "threshold table: expected 2 values (file keyword), got 1");
+  EXPECT_THAT(parse_error(Role::THRESHOLD, {"table", "/no/file", "K"}),
+              HasSubstr("threshold table: cannot open table file '/no/file'"));
+  EXPECT_EQ(parse_error(Role::REFORM, {"realistic", "1"}),
+            "reform unknown style 'realistic'; allowed: delta, uniform, gaussian, none");
+  EXPECT_EQ(parse_error(Role::REFORM, {"uniform", "0.2", "0.1"}),
+            "reform uniform: need lo < hi (got lo = 0.2, hi = 0.1)");
+  EXPECT_EQ(parse_error(Role::STIFFNESS, {"uniform", "0", "2"}),
+            "stiffness uniform: need 0 < lo < hi (got lo = 0, hi = 2)");
+  EXPECT_EQ(parse_error(Role::STIFFNESS, {"gaussian", "-1", "0.2"}),
+            "stiffness gaussian: need mean > 0 (got -1)");
+  EXPECT_EQ(parse_error(Role::STIFFNESS, {"delta", "1"}),
+            "stiffness unknown style 'delta'; allowed: constant, uniform, gaussian");
+}

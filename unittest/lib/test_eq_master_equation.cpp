@@ -1,0 +1,195 @@
+// Unit tests: master-equation solver against the exact renewal solution,
+// closed forms, conservation laws and the analytic stationary solution.
+#include "eq_distribution.h"
+#include "eq_master_equation.h"
+#include "eq_renewal_exact.h"
+
+#include "gtest/gtest.h"
+
+#include <cmath>
+
+using namespace feq;
+
+namespace {
+
+double max_error_vs_exact(double dx, double Xmax = 8.0)
+{
+  MEOptions o;
+  o.dx = dx;
+  o.Xmax = Xmax;
+  const MEResult r = solve_master_equation(make_uniform(0.75, 1.25), make_delta(0.0), o);
+  RenewalUniform ex(0.75, 1.25);
+  double e = 0.0;
+  for (size_t k = 0; k < r.X.size(); ++k) e = std::max(e, std::fabs(r.F[k] - ex.mean_stretch(r.X[k])));
+  return e;
+}
+
+}    // namespace
+
+// Closed forms for thresholds uniform on [0.75, 1.25], re-forming at 0:
+//   X < 0.75: <x> = X;  0.75..1.25: 2X(1.25-X) + (X-0.75)^2;  1.25..1.5: X - 1.
+double closed_form(double X)
+{
+  if (X <= 0.75) return X;
+  if (X <= 1.25) return 2.0 * X * (1.25 - X) + (X - 0.75) * (X - 0.75);
+  return X - 1.0;
+}
+
+TEST(RenewalExact, ClosedFormsAndLongTimeLimit)
+{
+  RenewalUniform ex(0.75, 1.25);
+  for (double X = 0.0; X <= 1.5; X += 0.01) EXPECT_NEAR(ex.mean_stretch(X), closed_form(X), 1e-13) << X;
+  // renewal density: Gamma = 2 on (0.75, 1.25) (uniform lifetimes, width 0.5)
+  EXPECT_NEAR(ex.rate(1.0), 2.0, 1e-13);
+  // long-time limits: Gamma -> 1/<T> = 1, <x> -> <T^2>/(2<T>) = 0.5104167;
+  // the oscillation decays by sinc(pi/2) = 2/pi per renewal: (2/pi)^12 = 0.0045
+  EXPECT_NEAR(ex.rate(11.9), 1.0, 0.0045);
+  EXPECT_NEAR(ex.mean_stretch(11.9), 0.5104166667, 0.0045);
+}
+
+// Gamma of the ME (rate over the step ending at X) against the exact density
+TEST(MasterEquation, BreakingRateMatchesExact)
+{
+  RenewalUniform ex(0.75, 1.25);
+  MEOptions o;
+  o.dx = 1e-3;
+  o.Xmax = 6.0;
+  const MEResult r = solve_master_equation(make_uniform(0.75, 1.25), make_delta(0.0), o);
+  for (double X : {1.0, 1.9, 2.7, 3.3, 4.6, 5.9}) {
+    const size_t k = size_t(std::llround(X / o.dx));
+    EXPECT_NEAR(r.Gamma[k], ex.rate(X - 0.5 * o.dx), 2e-3) << X;
+  }
+}
+
+TEST(MasterEquation, MatchesExactRenewalSolution)
+{
+  EXPECT_LT(max_error_vs_exact(1e-3), 1e-6);
+  MEOptions o;
+  o.dx = 1e-3;
+  o.Xmax = 1.5;
+  const MEResult r = solve_master_equation(make_uniform(0.75, 1.25), make_delta(0.0), o);
+  for (size_t k = 0; k < r.X.size(); ++k) EXPECT_NEAR(r.F[k], closed_form(r.X[k]), 1e-6) << r.X[k];
+}
+
+// Second-order convergence of F(X) in dx.  Measured: error ratio 4.00 per
+// halving when the kinks of P_c (0.75, 1.25) lie on the grid; otherwise
+// error <= 0.8 dx^2 (the constant depends on where the kinks fall).
+TEST(MasterEquation, SecondOrderConvergence)
+{
+  const double e1 = max_error_vs_exact(2e-3), e2 = max_error_vs_exact(1e-3);
+  const double order = std::log2(e1 / e2);
+  EXPECT_GT(order, 1.9);
+  EXPECT_LT(order, 2.1);
+  for (double dx : {4e-3, 3e-3, 1.5e-3, 7e-4}) EXPECT_LT(max_error_vs_exact(dx, 4.0), dx * dx) << dx;
+}
+
+// Re-forming where P(x) > 0 (R overlapping the thresholds): still second
+// order, thanks to the immediate re-breaks within a step.
+TEST(MasterEquation, SecondOrderWithSmearedReform)
+{
+  const auto Pc = make_realistic(1.0);
+  const auto R = make_gaussian(0.3, 0.1, -INFINITY);
+  const SteadyState s = steady_state(*Pc, *R);
+  double err[2];
+  int i = 0;
+  for (double dx : {2e-3, 1e-3}) {
+    MEOptions o;
+    o.dx = dx;
+    o.Xmax = 25.0;
+    const MEResult r = solve_master_equation(Pc, R, o);
+    err[i++] = std::fabs(r.F.back() - s.F);
+  }
+  const double order = std::log2(err[0] / err[1]);
+  EXPECT_GT(order, 1.9);
+  EXPECT_LT(order, 2.1);
+}
+
+TEST(MasterEquation, ConservesProbability)
+{
+  MEOptions o;
+  o.dx = 2e-3;
+  o.Xmax = 20.0;
+  for (auto R : {make_delta(0.0), make_gaussian(0.2, 0.05, -INFINITY), make_uniform(-0.1, 0.3)}) {
+    const MEResult r = solve_master_equation(make_realistic(1.0), R, o);
+    EXPECT_LT(r.max_mass_error, 1e-12) << R->describe();
+  }
+}
+
+TEST(MasterEquation, NoReformGivesSurvivalExactly)
+{
+  // contacts never re-form: <x> = X J(X), attached = J(X) (grid-exact)
+  MEOptions o;
+  o.dx = 1e-2;
+  o.Xmax = 4.0;
+  const auto Pc = make_realistic(1.0);
+  const MEResult r = solve_master_equation(Pc, nullptr, o);
+  for (size_t k = 0; k < r.X.size(); ++k) {
+    EXPECT_NEAR(r.attached[k], Pc->sf(r.X[k]), 1e-13);
+    EXPECT_NEAR(r.F[k], r.X[k] * Pc->sf(r.X[k]), 1e-13);
+  }
+}
+
+TEST(SteadyState, KineticForceClosedForms)
+{
+  // re-forming at 0: F_k/(N k_c) = <x_s^2> / (2 <x_s>)
+  const SteadyState u = steady_state(*make_uniform(0.75, 1.25), *make_delta(0.0));
+  EXPECT_NEAR(u.F, 0.5104166666666667, 1e-13);
+  EXPECT_NEAR(u.Gamma, 1.0, 1e-13);
+  const SteadyState r = steady_state(*make_realistic(1.0), *make_delta(0.0));
+  EXPECT_NEAR(r.F, 2.0 / (2.0 * 0.75 * std::sqrt(M_PI)), 1e-13);
+  // Q_s = J(x) / <x_s> for x > 0, normalized
+  double norm = 0.0;
+  for (size_t i = 0; i + 1 < r.x.size(); ++i) norm += 0.5 * (r.Q[i] + r.Q[i + 1]) * (r.x[i + 1] - r.x[i]);
+  EXPECT_NEAR(norm, 1.0, 1e-5);
+}
+
+// The time stepper relaxes to the analytic stationary solution, including
+// a smeared re-forming distribution (two independent computations).
+TEST(SteadyState, LongTimeLimitOfTheStepper)
+{
+  const auto Pc = make_realistic(1.0);
+  for (auto R : {make_delta(0.0), make_gaussian(0.3, 0.1, -INFINITY)}) {
+    MEOptions o;
+    o.dx = 1e-3;
+    o.Xmax = 30.0;
+    const MEResult r = solve_master_equation(Pc, R, o);
+    const SteadyState s = steady_state(*Pc, *R);
+    // measured at dx = 1e-3: |dF| = 1.7e-7, |dGamma| = 4.8e-8 (second order)
+    EXPECT_NEAR(r.F.back(), s.F, 5e-7) << R->describe();
+    EXPECT_NEAR(r.Gamma.back(), s.Gamma, 2e-7) << R->describe();
+  }
+}
+
+TEST(Stiffness, UniformAndRealistic)
+{
+  MEOptions o;
+  o.dx = 1e-3;
+  o.Xmax = 4.0;
+  // uniform [0.75,1.25]: -d<x>/dX = 2X - 1 on (0.75, 1.25): K*/K_s = 1.5 at X -> 1.25
+  const MEResult u = solve_master_equation(make_uniform(0.75, 1.25), make_delta(0.0), o);
+  const Extremum ku = critical_stiffness(u);
+  EXPECT_NEAR(ku.value, 1.5, 3e-3);
+  EXPECT_NEAR(ku.X, 1.25, 2e-3);
+  const Extremum pu = static_peak(u);
+  EXPECT_NEAR(pu.value, 0.75, 1e-3);
+  // realistic: converged K*/K_s = 0.174249 (paper: 0.179, see doc/src/eq_me.rst)
+  o.Xmax = 6.0;
+  const MEResult r1 = solve_master_equation(make_realistic(1.0), make_delta(0.0), o);
+  o.dx = 5e-4;
+  const MEResult r2 = solve_master_equation(make_realistic(1.0), make_delta(0.0), o);
+  const double k1 = critical_stiffness(r1).value, k2 = critical_stiffness(r2).value;
+  EXPECT_NEAR(k2, 0.174249, 2e-5);
+  EXPECT_NEAR(k1, k2, 2e-5);
+  EXPECT_NEAR(static_peak(r2).value, 0.821505, 2e-6);
+}
+
+TEST(Tables, TabulatedUniformEqualsAnalytic)
+{
+  std::vector<double> x{0.75, 1.25}, p{1.0, 1.0};
+  MEOptions o;
+  o.dx = 2e-3;
+  o.Xmax = 6.0;
+  const MEResult a = solve_master_equation(make_uniform(0.75, 1.25), make_delta(0.0), o);
+  const MEResult t = solve_master_equation(make_table(x, p, "u"), make_delta(0.0), o);
+  for (size_t k = 0; k < a.F.size(); ++k) EXPECT_NEAR(a.F[k], t.F[k], 1e-13);
+}
