@@ -73,9 +73,10 @@ double integrate(const std::function<double(double)> &f, double a, double b,
 
 /* ---------------------------------------------------------------------- */
 
-MasterEquation::MasterEquation(DistributionPtr Pc_, DistributionPtr R_, double dx_, double tail) :
+MasterEquation::MasterEquation(DistributionPtr Pc_, DistributionPtr R_, double dx_, double tail,
+                               Crossing crossing_) :
     Pc(std::move(Pc_)), R(std::move(R_)), dx(dx_), nstep(0), jlo(0), jhi(0), wlo(0), whi(0),
-    w_rebreak(0.0), last_rate(0.0)
+    w_rebreak(0.0), crossing(crossing_), last_rate(0.0)
 {
   if (!Pc) throw SpecError("master equation: missing threshold distribution");
   if (!(dx > 0.0) || !std::isfinite(dx)) throw SpecError("master equation: dx must be > 0");
@@ -114,6 +115,8 @@ MasterEquation::MasterEquation(DistributionPtr Pc_, DistributionPtr R_, double d
     }
   }
   brk[n - 1] = 1.0;
+  // step convention: every break re-forms at the end of the step
+  if (crossing == Crossing::STEP) std::fill(theta.begin(), theta.end(), 1.0);
 
   // re-injection weights (hat functions: mass and first moment exact)
   w.assign(n, 0.0);
@@ -144,7 +147,8 @@ MasterEquation::MasterEquation(DistributionPtr Pc_, DistributionPtr R_, double d
     while (wlo < n && w[wlo] == 0.0) ++wlo;
     whi = n - 1;
     while (whi > wlo && w[whi] == 0.0) --whi;
-    for (size_t k = wlo; k <= whi; ++k) w_rebreak += w[k] * brk[k];
+    if (crossing == Crossing::EXACT)
+      for (size_t k = wlo; k <= whi; ++k) w_rebreak += w[k] * brk[k];
   }
   m.assign(n, 0.0);
 }
@@ -244,7 +248,7 @@ std::vector<double> MasterEquation::density() const
 MEResult solve_master_equation(DistributionPtr Pc, DistributionPtr R, const MEOptions &opt)
 {
   if (!(opt.Xmax >= 0.0)) throw SpecError("master equation: xmax must be >= 0");
-  MasterEquation me(Pc, R, opt.dx);
+  MasterEquation me(Pc, R, opt.dx, 1e-17, opt.crossing);
   me.start(opt.start);
   MEResult r;
   r.dx = opt.dx;

@@ -34,10 +34,19 @@ enum class MEStart {
   REFORM      // Q(x;0) = R(x)
 };
 
+// How a break within a slider step is treated (mirrors fix eq/contacts):
+//  EXACT: the contact re-forms at the moment of the break (the continuous
+//         master equation, second-order scheme);
+//  STEP:  the contact re-forms at the end of the step with stretch r
+//         (the cellular-automaton EQ convention of `crossing step`); the
+//         scheme then reproduces that discrete model exactly, for any dx.
+enum class Crossing { EXACT, STEP };
+
 class MasterEquation {
  public:
   // R == nullptr: contacts never re-form (debonding)
-  MasterEquation(DistributionPtr Pc, DistributionPtr R, double dx, double tail = 1e-17);
+  MasterEquation(DistributionPtr Pc, DistributionPtr R, double dx, double tail = 1e-17,
+                 Crossing crossing = Crossing::EXACT);
 
   void start(MEStart how);
   void step();    // X -> X + dx
@@ -60,6 +69,7 @@ class MasterEquation {
   size_t jlo, jhi;      // active range of m (inclusive)
   size_t wlo, whi;      // support of the re-injection weights
   double w_rebreak;     // sum_k w_k (1 - S_k): re-formed mass that breaks at once
+  Crossing crossing;
   double last_rate;
 };
 
@@ -67,6 +77,7 @@ struct MEOptions {
   double dx = 1e-3;
   double Xmax = 8.0;
   MEStart start = MEStart::RELAXED;
+  Crossing crossing = Crossing::EXACT;
   std::vector<double> snapshots;    // X at which Q(x;X) is stored
 };
 

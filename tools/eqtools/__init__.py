@@ -1,0 +1,171 @@
+"""FRICTION-EQ analysis tools: run LAMMPS and the eq-me solver, read their
+output, and compare EQ simulations with master-equation references using
+statistics whose tolerances follow from the number of contacts.
+
+Only numpy (and matplotlib for plots) is needed: Debian's python3-numpy.
+"""
+import math
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def build_dir():
+    return Path(os.environ.get("FEQ_BUILD_DIR", ROOT / "build"))
+
+
+def lmp_exe():
+    return os.environ.get("FEQ_LMP", str(build_dir() / "lammps" / "lmp"))
+
+
+def eqme_exe():
+    return os.environ.get("FEQ_EQME", str(build_dir() / "eq-me"))
+
+
+def mpi_env():
+    env = dict(os.environ)
+    env.update({"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+                "OMPI_MCA_rmaps_base_oversubscribe": "1",
+                "OMPI_MCA_btl_vader_single_copy_mechanism": "none",
+                "OMPI_MCA_hwloc_base_binding_policy": "none", "OMP_NUM_THREADS": "1"})
+    return env
+
+
+class RunError(RuntimeError):
+    pass
+
+
+def run_lammps(infile, variables=None, nprocs=1, cwd=".", log="none", extra=(), check=True):
+    """Run lmp on `infile` with -var NAME VALUE pairs; returns stdout+stderr."""
+    cmd = []
+    if nprocs > 1:
+        cmd += [os.environ.get("MPIEXEC") or shutil.which("mpirun") or "mpirun", "-np", str(nprocs)]
+    cmd += [lmp_exe(), "-in", str(infile), "-log", log, "-nocite"]
+    for k, v in (variables or {}).items():
+        cmd += ["-var", str(k), str(v)]
+    cmd += list(extra)
+    p = subprocess.run(cmd, cwd=cwd, env=mpi_env(), stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, text=True)
+    if check and (p.returncode != 0 or "ERROR" in p.stdout):
+        raise RunError("LAMMPS failed (%s):\n%s" % (" ".join(cmd), p.stdout[-4000:]))
+    return p.stdout
+
+
+def run_eqme(args, cwd="."):
+    """Run eq-me with keyword arguments (a list); returns its summary dict."""
+    summary = Path(cwd) / "eqme_summary.txt"
+    cmd = [eqme_exe()] + [str(a) for a in args] + ["summary", str(summary)]
+    p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if p.returncode != 0:
+        raise RunError("eq-me failed (%s):\n%s" % (" ".join(cmd), p.stdout))
+    out = {}
+    for line in summary.read_text().splitlines():
+        k, v = line.split()
+        out[k] = float(v)
+    out["stdout"] = p.stdout
+    return out
+
+
+def load(path):
+    """Whitespace table with '#' comments as a 2-d array."""
+    return np.atleast_2d(np.loadtxt(path, comments="#"))
+
+
+def read_histo(path):
+    """Last histogram of a fix ave/histo file: (centers, counts, total)."""
+    lines = [l for l in Path(path).read_text().splitlines() if l and not l.startswith("#")]
+    nbins = int(lines[-1].split()[0])
+    # blocks: header line 'step nbins total missing min max' then nbins rows
+    head = None
+    for i, l in enumerate(lines):
+        w = l.split()
+        if len(w) == 6 and int(w[1]) == nbins:
+            head = i
+    rows = np.array([[float(v) for v in l.split()] for l in lines[head + 1:head + 1 + nbins]])
+    total = float(lines[head].split()[2])
+    return rows[:, 1], rows[:, 2], total
+
+
+# ---------------------------------------------------------------- statistics
+
+def gammaq(a, x):
+    """Regularized upper incomplete gamma Q(a,x) (series / continued fraction)."""
+    if x <= 0:
+        return 1.0
+    gln = math.lgamma(a)
+    if x < a + 1.0:
+        ap, s, d = a, 1.0 / a, 1.0 / a
+        for _ in range(1000):
+            ap += 1.0
+            d *= x / ap
+            s += d
+            if abs(d) < abs(s) * 1e-15:
+                break
+        return 1.0 - s * math.exp(-x + a * math.log(x) - gln)
+    b = x + 1.0 - a
+    c, d = 1.0 / 1e-300, 1.0 / b
+    h = d
+    for i in range(1, 1000):
+        an = -i * (i - a)
+        b += 2.0
+        d = an * d + b
+        d = 1e-300 if abs(d) < 1e-300 else d
+        c = b + an / c
+        c = 1e-300 if abs(c) < 1e-300 else c
+        d = 1.0 / d
+        h *= d * c
+        if abs(d * c - 1.0) < 1e-15:
+            break
+    return math.exp(-x + a * math.log(x) - gln) * h
+
+
+def chi2_sf(chi2, dof):
+    """P(chi^2_dof > chi2)."""
+    return gammaq(0.5 * dof, 0.5 * chi2)
+
+
+def chi2_histogram(counts, probs, min_expected=5.0):
+    """Pearson chi^2 of counts against bin probabilities (bins with small
+    expectation merged).  Returns (chi2, dof, p-value)."""
+    counts = np.asarray(counts, float)
+    probs = np.asarray(probs, float)
+    n = counts.sum()
+    exp_ = probs / probs.sum() * n
+    merged_c, merged_e, acc_c, acc_e = [], [], 0.0, 0.0
+    for c, e in zip(counts, exp_):
+        acc_c += c
+        acc_e += e
+        if acc_e >= min_expected:
+            merged_c.append(acc_c)
+            merged_e.append(acc_e)
+            acc_c = acc_e = 0.0
+    if acc_e > 0 and merged_e:
+        merged_c[-1] += acc_c
+        merged_e[-1] += acc_e
+    mc, me = np.array(merged_c), np.array(merged_e)
+    chi2 = float(np.sum((mc - me) ** 2 / me))
+    dof = len(mc) - 1
+    return chi2, dof, chi2_sf(chi2, dof)
+
+
+def bin_probabilities(x, q, edges):
+    """Integrate a density q(x) (tabulated, fine grid) over histogram bins."""
+    xf = np.linspace(edges[0], edges[-1], 20 * (len(edges) - 1) * 10 + 1)
+    qf = np.interp(xf, x, q, left=0.0, right=0.0)
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (qf[1:] + qf[:-1]) * np.diff(xf))])
+    ce = np.interp(edges, xf, cum)
+    return np.diff(ce)
+
+
+def zscores(f_eq, f_me, sd_me, n):
+    """Deviation of an N-contact average from the ME mean in units of its
+    standard error sd/sqrt(N) (sd of one contact from the ME)."""
+    se = np.asarray(sd_me) / math.sqrt(n)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = np.where(se > 0, (np.asarray(f_eq) - np.asarray(f_me)) / se, 0.0)
+    return z
