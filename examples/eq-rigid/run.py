@@ -58,7 +58,7 @@ def run(scale=1, nprocs=1, seed=4711, dX=0.01, out=None, plot=True, quiet=False)
     X = eq[:, 1]
     idx = np.rint(X / DX_ME).astype(int)
     F_me, sd_me = mef[idx, 1], mef[idx, 2]
-    z = eqtools.zscores(eq[:, 2], F_me, sd_me, N)
+    z = eqtools.zscores(eq[:, 2], F_me, sd_me, N, mef[idx, 5])
     zs = z[X > 0]
 
     centers, counts, total = eqtools.read_histo(out / "Qs.dat")

@@ -162,10 +162,20 @@ def bin_probabilities(x, q, edges):
     return np.diff(ce)
 
 
-def zscores(f_eq, f_me, sd_me, n):
+def zscores(f_eq, f_me, sd_me, n, skew=None, max_skew=0.05):
     """Deviation of an N-contact average from the ME mean in units of its
-    standard error sd/sqrt(N) (sd of one contact from the ME)."""
+    standard error sd/sqrt(N) (sd of one contact from the ME).
+
+    Where one contact's distribution is so skewed that the N-contact mean
+    is not yet normal (rare breaks: a few events among N contacts), the
+    point is left out (z = 0): with skew = third standardized moment, the
+    Edgeworth correction to the normal tail at |z| = 5 is ~ 20 skew/sqrt(N),
+    so points with |skew|/sqrt(N) > max_skew (factor-2 tail error) are not
+    tested."""
     se = np.asarray(sd_me) / math.sqrt(n)
+    ok = se > 0
+    if skew is not None:
+        ok &= np.abs(np.asarray(skew)) / math.sqrt(n) <= max_skew
     with np.errstate(divide="ignore", invalid="ignore"):
-        z = np.where(se > 0, (np.asarray(f_eq) - np.asarray(f_me)) / se, 0.0)
+        z = np.where(ok, (np.asarray(f_eq) - np.asarray(f_me)) / np.where(ok, se, 1.0), 0.0)
     return z

@@ -45,8 +45,8 @@ def at(me, X, dx=1e-3):
 
 
 def test_flagship_agrees_with_master_equation(tmp_path):
-    import run as flagship
-    r = flagship.run(out=tmp_path, plot=False, quiet=True)
+    from conftest import load_example
+    r = load_example("eq-rigid").run(out=tmp_path, plot=False, quiet=True)
     assert r["N"] == 4080
     assert r["me_exact"] < 1e-6              # ME (dx = 1e-3) vs exact renewal
     assert r["max_z"] < ZMAX                 # F(X) within its statistical error
@@ -108,10 +108,12 @@ def test_step_crossing_is_first_order_and_matches_its_discrete_master_equation(t
     st, _ = me_run(tmp_path / "st", thr + ["crossing", "step"], dx=0.04)
     X, F, _, _, N = eq_run(tmp_path / "eq", nx=120, ny=68, dX=0.04,
                            contacts="threshold uniform 0.75 1.25 crossing step")
-    z = eqtools.zscores(F, at(st, X, 0.04)[:, 1], at(st, X, 0.04)[:, 2], N)
+    a = at(st, X, 0.04)
+    z = eqtools.zscores(F, a[:, 1], a[:, 2], N, a[:, 5])
     assert np.max(np.abs(z)) < ZMAX
     # ... and its first-order error is resolved at this N: the test has power
-    zc = eqtools.zscores(F, at(ex, X, 0.01)[:, 1], at(ex, X, 0.01)[:, 2], N)
+    b = at(ex, X, 0.01)
+    zc = eqtools.zscores(F, b[:, 1], b[:, 2], N, b[:, 5])
     assert np.max(np.abs(zc)) > 2 * ZMAX
 
 
@@ -132,12 +134,13 @@ def test_contacts_that_never_reform_debond_with_the_threshold_survival(tmp_path)
     X, F, _, att, N = eq_run(tmp_path / "eq", nx=60, ny=34, Xmax=2.0,
                              contacts="threshold realistic 1.0 reform none")
     J = (1 + X ** 2) * np.exp(-X ** 2)
-    se = np.sqrt(J * (1 - J) / N)
-    z = np.where(se > 0, (att / N - J) / np.where(se > 0, se, 1), 0)
-    assert np.max(np.abs(z)) < ZMAX
+    sd = np.sqrt(J * (1 - J))
+    skew = np.where(sd > 0, (1 - 2 * J) / np.where(sd > 0, sd, 1), 0)    # Bernoulli
+    assert np.max(np.abs(eqtools.zscores(att / N, J, sd, N, skew))) < ZMAX
     me, _ = me_run(tmp_path / "me", ["threshold", "realistic", 1.0, "reform", "none"], Xmax=2.0)
     assert np.max(np.abs(at(me, X)[:, 1] - X * J)) < 1e-12
-    assert np.max(np.abs(eqtools.zscores(F, X * J, at(me, X)[:, 2], N))) < ZMAX
+    m = at(me, X)
+    assert np.max(np.abs(eqtools.zscores(F, X * J, m[:, 2], N, m[:, 5]))) < ZMAX
 
 
 @pytest.mark.parametrize("contacts,me_args,kmoments", [
@@ -160,4 +163,4 @@ def test_general_distributions_follow_the_master_equation(tmp_path, contacts, me
     k1, k2 = kmoments
     mean = k1 * m[:, 1]
     sd = np.sqrt(np.maximum(k2 * (m[:, 2] ** 2 + m[:, 1] ** 2) - mean ** 2, 0))
-    assert np.max(np.abs(eqtools.zscores(F, mean, sd, N))) < ZMAX
+    assert np.max(np.abs(eqtools.zscores(F, mean, sd, N, m[:, 5]))) < ZMAX

@@ -12,7 +12,7 @@
      crossing exact|step    continuous ME, or the discrete model of
                             fix eq/contacts ... crossing step     (exact)
      richardson yes|no      combine dx and dx/2 (4 F_h/2 - F_h)/3  (no)
-     force FILE      table: X  F/(N kc)  sd(x)  Gamma  attached
+     force FILE      table: X  F/(N kc)  sd(x)  Gamma  attached  skewness(x)
      steady FILE     table: x  Q_s(x)   (analytic stationary solution)
      snapshot X FILE table: x  Q(x;X)   (may be repeated)
      summary FILE    "name value" lines of the printed summary
@@ -239,10 +239,10 @@ int main(int argc, char **argv)
   if (!force_file.empty()) {
     std::ofstream out = open_out(force_file);
     out << "# eq-me: threshold " << thr.text << ", reform " << ref.text << ", dx " << opt.dx
-        << "\n# X F/(N*kc) sd(x) Gamma attached\n";
+        << "\n# X F/(N*kc) sd(x) Gamma attached skewness(x)\n";
     for (size_t k = 0; k < res.X.size(); ++k)
       out << res.X[k] << " " << res.F[k] << " " << res.sd[k] << " " << res.Gamma[k] << " "
-          << res.attached[k] << "\n";
+          << res.attached[k] << " " << res.skew[k] << "\n";
   }
   if (!steady_file.empty()) {
     if (!ref.dist) die("steady: contacts that never re-form have no steady state");

@@ -236,6 +236,13 @@ double MasterEquation::second_moment() const
   return s;
 }
 
+double MasterEquation::third_moment() const
+{
+  double s = 0.0;
+  for (size_t j = jlo; j <= jhi; ++j) s += m[j] * x[j] * x[j] * x[j];
+  return s;
+}
+
 std::vector<double> MasterEquation::density() const
 {
   std::vector<double> q(m.size());
@@ -265,7 +272,11 @@ MEResult solve_master_equation(DistributionPtr Pc, DistributionPtr R, const MEOp
     r.X.push_back(k * opt.dx);
     r.F.push_back(mean);
     // sd of the stretch of one contact (detached contacts count as x = 0)
-    r.sd.push_back(std::sqrt(std::max(0.0, me.second_moment() - mean * mean)));
+    const double m2 = me.second_moment();
+    const double var = std::max(0.0, m2 - mean * mean);
+    r.sd.push_back(std::sqrt(var));
+    const double c3 = me.third_moment() - 3.0 * mean * m2 + 2.0 * mean * mean * mean;
+    r.skew.push_back(var > 0.0 ? c3 / (var * std::sqrt(var)) : 0.0);
     r.Gamma.push_back(me.rate());
     r.attached.push_back(att);
     if (R) r.max_mass_error = std::max(r.max_mass_error, std::fabs(att - attached0));

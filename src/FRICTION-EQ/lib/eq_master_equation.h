@@ -55,6 +55,7 @@ class MasterEquation {
   double attached() const;        // int Q dx (1 unless contacts never re-form)
   double mean_stretch() const;    // int x Q dx  = F / (N k_c)
   double second_moment() const;   // int x^2 Q dx
+  double third_moment() const;    // int x^3 Q dx
   double rate() const { return last_rate; }    // Gamma over the last step
   const std::vector<double> &grid() const { return x; }
   std::vector<double> density() const;    // Q(x_j;X) = m_j / dx
@@ -84,6 +85,8 @@ struct MEOptions {
 struct MEResult {
   double dx = 0.0;
   std::vector<double> X, F, sd, Gamma, attached;    // F = <x> = F/(N k_c)
+  std::vector<double> skew;    // skewness of one contact's force: decides
+                               // whether an N-contact mean is near-normal
   std::vector<double> x;                             // stretch grid
   std::vector<double> snapX;
   std::vector<std::vector<double>> snapQ;
