@@ -76,7 +76,7 @@ def run(out=None, nx=30, ny=17, seed=2024, ratios=(0.5, 2.0), plot=True, quiet=F
         sub = out / f"K{r:g}"
         sub.mkdir(exist_ok=True)
         eqtools.run_lammps(HERE / "in.eq-stickslip", {"nx": nx, "ny": ny, "seed": seed,
-                                                      "kstar": kstar, "Kratio": r, "out": sub,
+                                                      "Kratio": r, "out": sub,
                                                       "contacts": " ".join(THRESHOLD)}, cwd=sub)
         d = eqtools.load(sub / "slider.dat")[:, 1:]    # Xs X V F_friction F_spring
         ev, dmax = slips(d, 0.004)

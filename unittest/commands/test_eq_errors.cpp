@@ -200,6 +200,35 @@ TEST_F(EQContactsErrors, RequiresAtomIDs)
                fix("1.0 5 threshold uniform 0.75 1.25"););
 }
 
+// the eq/me command: errors, and the internal variables it sets
+TEST_F(EQContactsErrors, MasterEquationCommand)
+{
+  TEST_FAILURE(".*ERROR: Illegal eq/me command: expected 'eq/me threshold <style> <values> "
+               "\\[keyword values ...\\]'.*",
+               command("eq/me"););
+  TEST_FAILURE(".*ERROR: eq/me threshold realistic: need xs > 0 \\(got 0\\).*",
+               command("eq/me threshold realistic 0"););
+  TEST_FAILURE(".*ERROR: eq/me unknown keyword 'dX'; allowed: threshold, reform, xmax, dx, start, "
+               "crossing, richardson, force, steady, snapshot, summary, exact.*",
+               command("eq/me threshold realistic 1.0 dX 0.1"););
+  TEST_FAILURE(".*ERROR: eq/me dx: expected a number, got 'fine'.*",
+               command("eq/me threshold realistic 1.0 dx fine"););
+  HIDE_OUTPUT([&] {
+    command("variable eq_me_kstar equal 1.0");
+  });
+  TEST_FAILURE(".*ERROR: eq/me: variable eq_me_kstar exists and is not of style internal.*",
+               command("eq/me threshold uniform 0.75 1.25 xmax 2"););
+  HIDE_OUTPUT([&] {
+    command("variable eq_me_kstar delete");
+    command("eq/me threshold uniform 0.75 1.25 xmax 3");
+  });
+  EXPECT_NEAR(get_variable_value("eq_me_kstar"), 1.5, 2e-3);
+  EXPECT_NEAR(get_variable_value("eq_me_kinetic_force"), 0.5104166666666667, 1e-12);
+  // a second call updates the variables
+  HIDE_OUTPUT([&] { command("eq/me threshold realistic 1.0 xmax 3"); });
+  EXPECT_NEAR(get_variable_value("eq_me_kstar"), 0.17425, 1e-5);
+}
+
 int main(int argc, char **argv)
 {
   MPI_Init(&argc, &argv);

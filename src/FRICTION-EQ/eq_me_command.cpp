@@ -1,0 +1,63 @@
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: command eq/me (see eq_me_command.h)
+------------------------------------------------------------------------- */
+
+#include "eq_me_command.h"
+
+#include "comm.h"
+#include "error.h"
+#include "input.h"
+#include "utils.h"
+#include "variable.h"
+
+#include "eq_me_job.h"
+
+#include <string>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+void EQMe::command(int narg, char **arg)
+{
+  if (narg < 1)
+    error->all(FLERR, "Illegal eq/me command: expected 'eq/me threshold <style> <values> "
+                      "[keyword values ...]'");
+  const std::vector<std::string> args(arg, arg + narg);
+  auto number = [&](const std::string &tok) -> double {
+    if (!utils::is_double(tok)) throw feq::SpecError("not a number");
+    return utils::numeric(FLERR, tok.c_str(), false, lmp);
+  };
+  auto resolve = [&](const std::string &file) { return utils::get_potential_file_path(file); };
+
+  feq::MEJob job;
+  try {
+    job = feq::parse_me_job(args, number, resolve);
+  } catch (const feq::SpecError &e) {
+    error->all(FLERR, "eq/me {}", e.what());
+  }
+
+  // every rank solves (deterministic, cheap); rank 0 writes the tables
+  feq::MEReport rep;
+  try {
+    rep = feq::run_me_job(job, comm->me == 0);
+  } catch (const feq::SpecError &e) {
+    error->one(FLERR, "eq/me {}", e.what());
+  }
+  if (comm->me == 0) utils::logmesg(lmp, rep.text);
+
+  const char *names[] = {"kstar",   "kstar_X",       "static_peak", "static_peak_X",
+                         "kinetic_force", "steady_rate", "force_at_xmax"};
+  for (const char *n : names) {
+    const auto it = rep.values.find(n);
+    if (it == rep.values.end()) continue;
+    const std::string name = std::string("eq_me_") + n;
+    const int ivar = input->variable->find(name.c_str());
+    if (ivar >= 0) {
+      if (!input->variable->internalstyle(ivar))
+        error->all(FLERR, "eq/me: variable {} exists and is not of style internal", name);
+      input->variable->internal_set(ivar, it->second);
+    } else {
+      input->variable->set(fmt::format("{} internal {:.17g}", name, it->second));
+    }
+  }
+}

@@ -1,0 +1,55 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   FRICTION-EQ package: one master-equation "job" as requested by keywords.
+   Shared by the eq-me command-line tool and the LAMMPS command eq/me, so
+   that both accept the same syntax, write the same tables and report the
+   same numbers.  LAMMPS-free.
+
+   keywords:
+     threshold uniform lo hi | gaussian mean sd | realistic xs | table file key
+     reform    delta x0 | uniform lo hi | gaussian mean sd | none  (delta 0)
+     xmax X                 (8)      dx h                      (1e-3)
+     start relaxed|reform   (relaxed)
+     crossing exact|step    (exact)
+     richardson yes|no      (yes with crossing exact, no with crossing step)
+     force FILE | steady FILE | snapshot X FILE | summary FILE | exact FILE
+------------------------------------------------------------------------- */
+
+#ifndef FEQ_ME_JOB_H
+#define FEQ_ME_JOB_H
+
+#include "eq_distribution.h"
+#include "eq_master_equation.h"
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace feq {
+
+struct MEJob {
+  DistributionSpec threshold, reform;
+  MEOptions opt;
+  bool richardson = true;    // set from "auto" after parsing
+  std::string force_file, steady_file, summary_file, exact_file;
+  std::vector<std::pair<double, std::string>> snapshots;
+};
+
+// Parses keyword/value pairs; throws SpecError naming the keyword.
+MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &number,
+                   const FileResolver &resolve = {});
+
+struct MEReport {
+  std::map<std::string, double> values;    // kstar, kinetic_force, ...
+  std::string text;                        // human-readable summary
+};
+
+// Solves, writes the requested files (when write_files) and returns the
+// summary.  Throws SpecError on output problems.
+MEReport run_me_job(const MEJob &job, bool write_files = true);
+
+const char *me_job_keywords();
+
+}    // namespace feq
+
+#endif
