@@ -337,27 +337,44 @@ double FixEQContacts::resolve_breaks(int i, double s)
 
 void FixEQContacts::apply(bool allow_breaks)
 {
-  double **f = atom->f;
-  const int *mask = atom->mask;
+  double *const *const x = atom->x;
+  double *const *const f = atom->f;
+  const int *const mask = atom->mask;
+  const imageint *const image = atom->image;
   const int nlocal = atom->nlocal;
   const int d = idir;
+  const int bits = (d == 0) ? 0 : (d == 1 ? IMGBITS : IMG2BITS);
+  const double prd = domain->prd[d];
+  const bool triclinic = domain->triclinic;
 
   double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = 0.0;
   local_sum[SUM_BREAKS] = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    double *st = state[i];
+    double *const st = state[i];
     ncount += 1.0;
-    if (st[THRESHOLD] == 0.0) init_contact(i);    // atom created or added later
-    if (st[THRESHOLD] < 0.0) {                     // detached for good
-      st[STRETCH] = st[FORCE] = 0.0;
-      continue;
+    double th = st[THRESHOLD];
+    if (th <= 0.0) {
+      if (th == 0.0) {    // atom created, or added to the group, after the fix
+        init_contact(i);
+        th = st[THRESHOLD];
+      } else {            // detached for good
+        st[STRETCH] = st[FORCE] = 0.0;
+        continue;
+      }
     }
-    const double xu = unwrapped(i);
+    // unwrapped coordinate along the sliding direction
+    double xu;
+    if (!triclinic) {
+      const int n = int((image[i] >> bits) & IMGMASK) - IMGMAX;
+      xu = x[i][d] + n * prd;
+    } else {
+      xu = unwrapped(i);
+    }
     double s = xu - st[ANCHOR];
-    // the force that decides breaking is k_i s (the stretch test is equivalent)
-    if (allow_breaks && !(std::fabs(s) < st[THRESHOLD])) {
+    // the force that decides breaking is k_i s: the stretch test is equivalent
+    if (!(std::fabs(s) < th) && allow_breaks) {
       s = resolve_breaks(i, s);
       if (st[THRESHOLD] < 0.0) {
         st[STRETCH] = st[FORCE] = 0.0;
@@ -365,8 +382,7 @@ void FixEQContacts::apply(bool allow_breaks)
       }
       st[ANCHOR] = xu - s;
     }
-    const double k = st[STIFFNESS];
-    const double fc = k * s;
+    const double fc = st[STIFFNESS] * s;
     st[STRETCH] = s;
     st[FORCE] = fc;
     f[i][d] -= fc;

@@ -1,0 +1,73 @@
+#!/usr/bin/python3
+"""Benchmark of fix eq/contacts: nanoseconds per contact-step for
+N = 1e4, 1e5, 1e6 contacts on 1 and 2 MPI ranks, with LAMMPS' timer
+breakdown.  Each configuration is run with and without the fix (same
+driver), so the fix's own cost is separated from LAMMPS' time stepping.
+
+  ./bench_contacts.py                  the table for the README
+  ./bench_contacts.py --driver move    with fix move linear as the driver
+  ./bench_contacts.py --sizes 1e4      a quick check
+"""
+import argparse
+import math
+import re
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parents[1] / "tools"))
+import eqtools  # noqa: E402
+
+SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
+
+
+def lattice(n):
+    """hex cells nx x ny (2 contacts each) with 2 nx ny ~ n, nx = 2 ny"""
+    ny = max(1, int(round(math.sqrt(n / 4.0))))
+    return 2 * ny, ny
+
+
+def one(n, ranks, fix, driver, steps, out):
+    nx, ny = lattice(n)
+    log = eqtools.run_lammps(HERE / "in.bench", {"nx": nx, "ny": ny, "steps": steps, "fix": fix,
+                                                 "driver": driver}, nprocs=ranks, cwd=out)
+    loop = float(re.search(r"Loop time of ([0-9.eE+-]+)", log).group(1))
+    natoms = int(re.search(r"for \d+ steps with (\d+) atoms", log).group(1))
+    timers = {}
+    for sec in SECTIONS:
+        # "Section | min | avg | max | %varavg | %total": take the average
+        m = re.search(r"^%s\s*\|([^|]*)\|\s*([0-9.eE+-]+)" % sec, log, re.M)
+        timers[sec] = float(m.group(2)) if m else 0.0
+    return natoms, loop, timers
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--sizes", default="1e4,1e5,1e6")
+    ap.add_argument("--ranks", default="1,2")
+    ap.add_argument("--driver", default="noforce", choices=["noforce", "move"])
+    ap.add_argument("--work", type=float, default=2e8, help="contact-steps per run (sets steps)")
+    a = ap.parse_args()
+    out = HERE / "out"
+    out.mkdir(exist_ok=True)
+    print(f"fix eq/contacts benchmark: thresholds uniform [0.75,1.25], dX = 0.01 (a break per "
+          f"contact every ~100 steps), driver {a.driver}")
+    print(f"{'N':>9} {'ranks':>5} {'steps':>6} {'total':>9} {'baseline':>9} {'eq/contacts':>11}   "
+          f"LAMMPS timers with the fix, % of loop ({', '.join(SECTIONS)})")
+    print(f"{'':>9} {'':>5} {'':>6} {'ns/c-step':>9} {'ns/a-step':>9} {'ns/c-step':>11}")
+    for n in [int(float(v)) for v in a.sizes.split(",")]:
+        steps = max(100, int(a.work / n))
+        for r in [int(v) for v in a.ranks.split(",")]:
+            natoms, t_fix, timers = one(n, r, "yes", a.driver, steps, out)
+            _, t_base, _ = one(n, r, "no", a.driver, steps, out)
+            cs = natoms * steps
+            pct = " ".join(f"{100 * timers[s] / t_fix:5.1f}" for s in SECTIONS)
+            print(f"{natoms:>9} {r:>5} {steps:>6} {1e9 * t_fix / cs:>9.2f} {1e9 * t_base / cs:>9.2f} "
+                  f"{1e9 * (t_fix - t_base) / cs:>11.2f}   {pct}", flush=True)
+    print("ns/c-step: wall time of the run loop per contact and step; baseline: the same run "
+          "without the fix;\neq/contacts: the difference.  2 ranks on this 2-core machine share "
+          "memory bandwidth.")
+
+
+if __name__ == "__main__":
+    main()
