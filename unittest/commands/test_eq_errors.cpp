@@ -184,6 +184,18 @@ TEST_F(EQContactsErrors, RuntimeChecks)
   TEST_FAILURE(".*ERROR on proc 0: Fix eq/contacts: contact [0-9]+ broke more than 1000 times in "
                "one step.*reduce the timestep.*",
                command("run 2"););
+  // a position that is not a number (inf - inf) is reported, not propagated
+  HIDE_OUTPUT([&] {
+    command("unfix m");
+    command("unfix c");
+    fix("1.0 5 threshold uniform 0.75 1.25");
+    command("variable big equal 1e308");
+    command("variable nanx equal v_big*v_big-v_big*v_big");
+    command("fix m all move variable v_nanx NULL NULL NULL NULL NULL");
+  });
+  TEST_FAILURE(".*ERROR on proc 0: Fix eq/contacts: stretch of contact [0-9]+ is -?nan \\(numerical "
+               "instability: check the timestep, the forces and the integrator\\).*",
+               command("run 2"););
 }
 
 TEST_F(EQContactsErrors, RequiresAtomIDs)

@@ -75,6 +75,14 @@ def thermo_line(log, step):
     return [float(v) for v in lines[-1].split()]
 
 
+def test_atom_sorting_does_not_change_the_contacts(tmp_path):
+    """LAMMPS reorders atoms in memory (atom_modify sort): the state moves
+    with them (copy_arrays) and the draws are keyed by atom ID."""
+    state(tmp_path / "plain", "run", 1)
+    state(tmp_path / "sorted", "run", 2, sort="7 1.5")
+    assert final_dump(tmp_path / "plain", "run") == final_dump(tmp_path / "sorted", "run")
+
+
 def test_changed_seed_on_restart_is_reported(tmp_path):
     state(tmp_path, "write", 1)
     log = state(tmp_path, "read", 1, seed=12345)
