@@ -154,11 +154,14 @@ def chi2_histogram(counts, probs, min_expected=5.0):
 
 
 def bin_probabilities(x, q, edges):
-    """Integrate a density q(x) (tabulated, fine grid) over histogram bins."""
-    xf = np.linspace(edges[0], edges[-1], 20 * (len(edges) - 1) * 10 + 1)
-    qf = np.interp(xf, x, q, left=0.0, right=0.0)
-    cum = np.concatenate([[0.0], np.cumsum(0.5 * (qf[1:] + qf[:-1]) * np.diff(xf))])
-    ce = np.interp(edges, xf, cum)
+    """Integrate a tabulated density q(x) over histogram bins: trapezoid
+    cumulative on the table's own points (zero outside the table, so a
+    density that jumps at the table's ends, like Q_s at x = 0, is not
+    smeared across the end), interpolated at the bin edges."""
+    x = np.asarray(x, float)
+    q = np.asarray(q, float)
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (q[1:] + q[:-1]) * np.diff(x))])
+    ce = np.interp(edges, x, cum, left=0.0, right=cum[-1])
     return np.diff(ce)
 
 

@@ -55,6 +55,18 @@ def test_flagship_agrees_with_master_equation(tmp_path):
     assert abs(r["kstar"] - 1.5) < 2e-3      # K*/K_s, exact 1.5 (kink at X = 1.25)
 
 
+def test_large_N_flagship(tmp_path):
+    """The large-N variant (N = 261120: 8 times smaller statistical error)
+    with slider step 0.05, which exact crossing allows without any step
+    error.  At this N the chi^2 test of Q_s(x) resolves errors of 1% of a
+    bin's expectation."""
+    from conftest import load_example
+    r = load_example("eq-rigid").run(out=tmp_path, scale=8, dX=0.05, plot=False, quiet=True)
+    assert r["N"] == 261120
+    assert r["max_z"] < ZMAX
+    assert r["p"] > 1e-4
+
+
 def test_exact_crossing_is_independent_of_the_slider_step(tmp_path):
     """Breaks are resolved at the threshold crossing, so F(X) at a given X
     does not depend on the step: same break sequence, F equal to rounding."""
