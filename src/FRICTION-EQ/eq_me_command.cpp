@@ -10,8 +10,10 @@
 #include "utils.h"
 #include "variable.h"
 
+#include "eq_lammps_util.h"
 #include "eq_me_job.h"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -23,15 +25,9 @@ void EQMe::command(int narg, char **arg)
     error->all(FLERR, "Illegal eq/me command: expected 'eq/me threshold <style> <values> "
                       "[keyword values ...]'");
   const std::vector<std::string> args(arg, arg + narg);
-  auto number = [&](const std::string &tok) -> double {
-    if (!utils::is_double(tok)) throw feq::SpecError("not a number");
-    return utils::numeric(FLERR, tok.c_str(), false, lmp);
-  };
-  auto resolve = [&](const std::string &file) { return utils::get_potential_file_path(file); };
-
   feq::MEJob job;
   try {
-    job = feq::parse_me_job(args, number, resolve);
+    job = feq::parse_me_job(args, EQUtil::number_parser(lmp), EQUtil::file_loader(lmp));
   } catch (const feq::SpecError &e) {
     error->all(FLERR, "eq/me {}", e.what());
   }
@@ -45,19 +41,22 @@ void EQMe::command(int narg, char **arg)
   }
   if (comm->me == 0) utils::logmesg(lmp, rep.text);
 
-  const char *names[] = {"kstar",   "kstar_X",       "static_peak", "static_peak_X",
+  // results as internal variables; a result this job does not have (no
+  // static peak within xmax, no steady state without re-forming) deletes
+  // the variable of an earlier eq/me, so that no stale value is used
+  const char *names[] = {"kstar",         "kstar_X",     "static_peak",  "static_peak_X",
                          "kinetic_force", "steady_rate", "force_at_xmax"};
   for (const char *n : names) {
-    const auto it = rep.values.find(n);
-    if (it == rep.values.end()) continue;
     const std::string name = std::string("eq_me_") + n;
     const int ivar = input->variable->find(name.c_str());
-    if (ivar >= 0) {
-      if (!input->variable->internalstyle(ivar))
-        error->all(FLERR, "eq/me: variable {} exists and is not of style internal", name);
-      input->variable->internal_set(ivar, it->second);
-    } else {
-      input->variable->set(fmt::format("{} internal {:.17g}", name, it->second));
+    if (ivar >= 0 && !input->variable->internalstyle(ivar))
+      error->all(FLERR, "eq/me: variable {} exists and is not of style internal", name);
+    const auto it = rep.values.find(n);
+    if (it == rep.values.end() || !std::isfinite(it->second)) {
+      if (ivar >= 0) input->variable->set(name + " delete");
+      continue;
     }
+    if (ivar >= 0) input->variable->internal_set(ivar, it->second);
+    else input->variable->set(fmt::format("{} internal {:.17g}", name, it->second));
   }
 }

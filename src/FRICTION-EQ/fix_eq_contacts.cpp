@@ -20,6 +20,7 @@
 #include "update.h"
 #include "utils.h"
 
+#include "eq_lammps_util.h"
 #include "eq_random.h"
 
 #include <cmath>
@@ -33,8 +34,8 @@ namespace {
 // a contact may break at most this often within one time step
 constexpr int MAX_BREAKS_PER_STEP = 1000;
 // sums kept per rank: friction force, breaks in step, attached, energy,
-// sum of stretches, contacts
-enum { SUM_FORCE, SUM_BREAKS, SUM_ATTACHED, SUM_ENERGY, SUM_STRETCH, SUM_COUNT };
+// sum of stretches, contacts, breaks since the fix was defined
+enum { SUM_FORCE, SUM_BREAKS, SUM_ATTACHED, SUM_ENERGY, SUM_STRETCH, SUM_COUNT, SUM_TOTAL, NSUM };
 const char *KEYWORDS = "threshold, reform, stiffness, dir, crossing, start";
 }    // namespace
 
@@ -65,23 +66,20 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   stiffness.text = "constant";
 
   const std::vector<std::string> args(arg, arg + narg);
-  auto number = [&](const std::string &tok) -> double {
-    if (!utils::is_double(tok)) throw feq::SpecError("not a number");
-    return utils::numeric(FLERR, tok.c_str(), false, lmp);
-  };
-  auto resolve = [&](const std::string &file) { return utils::get_potential_file_path(file); };
+  const feq::NumberParser number = EQUtil::number_parser(lmp);
+  const feq::FileLoader load = EQUtil::file_loader(lmp);
 
   size_t iarg = 5;
   while (iarg < args.size()) {
     const std::string &kw = args[iarg++];
     try {
       if (kw == "threshold") {
-        threshold = feq::parse_distribution(feq::Role::THRESHOLD, args, iarg, number, resolve);
+        threshold = feq::parse_distribution(feq::Role::THRESHOLD, args, iarg, number, load);
         have_threshold = true;
       } else if (kw == "reform") {
-        reform = feq::parse_distribution(feq::Role::REFORM, args, iarg, number, resolve);
+        reform = feq::parse_distribution(feq::Role::REFORM, args, iarg, number, load);
       } else if (kw == "stiffness") {
-        stiffness = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number, resolve);
+        stiffness = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number, load);
       } else if (kw == "dir") {
         if (iarg >= args.size()) throw feq::SpecError("dir: missing value; allowed: x, y, z");
         const std::string &v = args[iarg++];
@@ -118,17 +116,36 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Fix eq/contacts: dir z is not allowed in a 2d simulation; allowed: x, y");
   if (start_reform && !reform.dist)
     error->all(FLERR, "Fix eq/contacts: start reform needs contacts that re-form (reform none given)");
-  if (reform.dist && threshold.dist->sf(std::fabs(reform.dist->mean())) <= 0.0 &&
-      reform.dist->is_point())
-    error->all(FLERR,
-               "Fix eq/contacts: reform stretch {} is not below the largest breaking threshold {}",
-               reform.dist->mean(), threshold.dist->upper());
-  if (group->count(igroup) == 0)
+  // a contact must be able to form below its threshold
+  try {
+    feq::check_reform(*threshold.dist, reform);
+  } catch (const feq::SpecError &e) {
+    error->all(FLERR, "Fix eq/contacts {}", e.what());
+  }
+  const bigint ncontacts = group->count(igroup);
+  if (ncontacts == 0)
     error->all(FLERR, "Fix eq/contacts: group {} has no atoms", group->names[igroup]);
 
   reform_point = reform.dist && reform.dist->is_point();
   reform_value = reform.dist ? reform.dist->mean() : 0.0;
   stiffness_const = stiffness.text == "constant";
+  // re-forming stretches are drawn from R truncated to |r| < max x_s (a
+  // weight below 1e-12, checked above) so that no draw can abort a run
+  const double top = threshold.dist->upper();
+  if (reform.dist && std::isfinite(top)) {
+    reform_cdf_lo = reform.dist->cdf(-top);
+    reform_cdf_hi = reform.dist->cdf(std::nextafter(top, -top));
+  } else {
+    reform_cdf_lo = 0.0;
+    reform_cdf_hi = 1.0;
+  }
+
+  if (comm->me == 0)
+    utils::logmesg(lmp,
+                   "fix eq/contacts: {} contacts along {}; thresholds {} (<x_s> = {:.6g}); reform "
+                   "{}; stiffness {} (<k_i> = {:.6g}); crossing {}\n",
+                   ncontacts, "xyz"[idir], threshold.text, threshold.dist->mean(), reform.text,
+                   stiffness.text, kc * stiffness.dist->mean(), exact ? "exact" : "step");
 
   restart_global = 1;
   restart_peratom = 1;
@@ -197,8 +214,29 @@ void FixEQContacts::init()
   }
 }
 
+/* ----------------------------------------------------------------------
+   group membership can change only between runs (the fix does not allow
+   dynamic groups): an atom that left the group stops being a contact and
+   forms a fresh contact, relaxed where it is, if it comes back
+------------------------------------------------------------------------- */
+
+void FixEQContacts::mark_departed()
+{
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++) {
+    double *const st = state[i];
+    if (!(mask[i] & groupbit) && st[THRESHOLD] > 0.0) {
+      st[THRESHOLD] = 0.0;
+      st[STIFFNESS] = -1.0;    // marks a re-entry for init_contact()
+      st[STRETCH] = st[FORCE] = 0.0;
+    }
+  }
+}
+
 void FixEQContacts::setup(int vflag)
 {
+  mark_departed();
   if (utils::strmatch(update->integrate_style, "^verlet"))
     post_force(vflag);
   else {
@@ -210,6 +248,7 @@ void FixEQContacts::setup(int vflag)
 
 void FixEQContacts::min_setup(int /*vflag*/)
 {
+  mark_departed();
   apply(false);
 }
 
@@ -249,29 +288,45 @@ inline double FixEQContacts::unwrapped(int i) const
 }
 
 /* ----------------------------------------------------------------------
-   state of a new contact (event 0): threshold above the initial stretch
+   re-forming stretch; R is truncated to |r| < max threshold, which only
+   matters for draws of probability below 1e-12 (checked at definition)
+------------------------------------------------------------------------- */
+
+double FixEQContacts::draw_reform(tagint tag, bigint event, uint32_t stream)
+{
+  if (reform_point) return reform_value;
+  const feq::Uniform u = feq::draw(seed, tag, event, stream);
+  const double r = reform.dist->sample(u);
+  if (std::fabs(r) < threshold.dist->upper()) return r;
+  return reform.dist->quantile(reform_cdf_lo + u.u * (reform_cdf_hi - reform_cdf_lo));
+}
+
+/* ----------------------------------------------------------------------
+   a contact forms at atom i: its first formation uses the draws of event
+   0; a re-entry into the group uses the re-entry streams at its current
+   break count.  The threshold is drawn above the initial stretch.
 ------------------------------------------------------------------------- */
 
 void FixEQContacts::init_contact(int i)
 {
   const tagint tag = atom->tag[i];
   double *s = state[i];
-  double s0 = 0.0;
-  if (start_reform)
-    s0 = reform_point ? reform_value
-                      : reform.dist->sample(feq::draw(seed, tag, 0, feq::STREAM_REFORM));
+  const bool reentry = s[STIFFNESS] < 0.0;
+  const bigint event = reentry ? (bigint) s[NBREAK] : 0;
+  const uint32_t off = reentry ? feq::STREAM_REENTRY : 0;
+  const double s0 = start_reform ? draw_reform(tag, event, feq::STREAM_REFORM + off) : 0.0;
   const double k = stiffness_const
       ? kc
-      : kc * stiffness.dist->sample(feq::draw(seed, tag, 0, feq::STREAM_STIFFNESS));
-  const double th =
-      threshold.dist->sample_above(std::fabs(s0), feq::draw(seed, tag, 0, feq::STREAM_THRESHOLD));
+      : kc * stiffness.dist->sample(feq::draw(seed, tag, event, feq::STREAM_STIFFNESS + off));
+  const double th = threshold.dist->sample_above(
+      std::fabs(s0), feq::draw(seed, tag, event, feq::STREAM_THRESHOLD + off));
   if (!(th > 0.0))
     error->one(FLERR, "Fix eq/contacts: initial stretch {} of contact {} is not below the largest "
                "breaking threshold", s0, tag);
   s[STRETCH] = s0;
   s[THRESHOLD] = th;
   s[FORCE] = k * s0;
-  s[NBREAK] = 0.0;
+  s[NBREAK] = (double) event;
   s[STIFFNESS] = k;
   s[ANCHOR] = unwrapped(i) - s0;
 }
@@ -290,6 +345,13 @@ double FixEQContacts::resolve_breaks(int i, double s)
 {
   const tagint tag = atom->tag[i];
   double *st = state[i];
+  // LAMMPS keeps the image count in IMGBITS bits: after IMGMAX periodic
+  // crossings it wraps, and the unwrapped coordinate jumps by 2 IMGMAX box
+  // lengths.  No stretch can be that large: undo the jump.
+  if (!domain->triclinic && domain->periodicity[idir]) {
+    const double wrap = 2.0 * IMGMAX * domain->prd[idir];
+    if (std::fabs(s) > 0.5 * wrap) s -= wrap * std::round(s / wrap);
+  }
   int nb = 0;
   while (!(std::fabs(s) < st[THRESHOLD])) {
     if (!std::isfinite(s))
@@ -313,18 +375,16 @@ double FixEQContacts::resolve_breaks(int i, double s)
       st[STIFFNESS] = 0.0;
       return 0.0;
     }
-    const double r = reform_point
-        ? reform_value
-        : reform.dist->sample(feq::draw(seed, tag, event, feq::STREAM_REFORM));
+    const double r = draw_reform(tag, event, feq::STREAM_REFORM);
     if (!stiffness_const)
       st[STIFFNESS] = kc * stiffness.dist->sample(feq::draw(seed, tag, event, feq::STREAM_STIFFNESS));
     const double th = threshold.dist->sample_above(
         std::fabs(r), feq::draw(seed, tag, event, feq::STREAM_THRESHOLD));
-    if (!(th > 0.0))
+    if (!(th > 0.0))    // only if the survival function underflows at |r|
       error->one(FLERR,
-                 "Fix eq/contacts: contact {} re-formed with stretch {}, which is not below the "
-                 "largest breaking threshold ({}); check the reform distribution",
-                 tag, r, threshold.dist->upper());
+                 "Fix eq/contacts: contact {} re-formed with stretch {}, where no breaking "
+                 "threshold of {} lies above it; check the reform distribution",
+                 tag, r, threshold.text);
     st[THRESHOLD] = th;
     s = sign * r + over;
   }
@@ -396,6 +456,7 @@ void FixEQContacts::apply(bool allow_breaks)
   local_sum[SUM_ENERGY] = 0.5 * esum;
   local_sum[SUM_STRETCH] = ssum;
   local_sum[SUM_COUNT] = ncount;
+  local_sum[SUM_TOTAL] = (double) local_breaks_total;
   reduced_valid = 0;
 }
 
@@ -406,7 +467,7 @@ void FixEQContacts::apply(bool allow_breaks)
 void FixEQContacts::reduce()
 {
   if (reduced_valid && reduced_step == update->ntimestep) return;
-  MPI_Allreduce(local_sum, global_sum, 6, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(local_sum, global_sum, NSUM, MPI_DOUBLE, MPI_SUM, world);
   reduced_step = update->ntimestep;
   reduced_valid = 1;
 }
@@ -422,11 +483,7 @@ double FixEQContacts::compute_vector(int n)
   switch (n) {
     case 0: reduce(); return global_sum[SUM_FORCE];
     case 1: reduce(); return global_sum[SUM_BREAKS];
-    case 2: {
-      bigint all = 0;
-      MPI_Allreduce(&local_breaks_total, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-      return (double) (all + breaks_offset);
-    }
+    case 2: reduce(); return global_sum[SUM_TOTAL] + (double) breaks_offset;
     case 3: reduce(); return global_sum[SUM_ATTACHED];
     case 4: reduce(); return global_sum[SUM_ENERGY];
     case 5:

@@ -68,18 +68,21 @@ class FixEQContacts : public Fix {
   feq::DistributionSpec threshold, reform, stiffness;
   bool reform_point, stiffness_const;
   double reform_value;
+  double reform_cdf_lo, reform_cdf_hi;    // R truncated to |r| < max threshold
 
   double **state;    // per-atom state, NCOL columns (array_atom)
 
   // local sums of the last force evaluation; reduced on demand
-  double local_sum[6];
-  double global_sum[6];
+  double local_sum[7];
+  double global_sum[7];
   bigint local_breaks_total, breaks_offset;
   bigint reduced_step;
   int reduced_valid;
 
   void apply(bool allow_breaks);
   void init_contact(int i);
+  void mark_departed();
+  double draw_reform(tagint tag, bigint event, uint32_t stream);
   double resolve_breaks(int i, double s);
   void reduce();
   double unwrapped(int i) const;

@@ -137,9 +137,20 @@ TEST_F(EQContactsErrors, ReformStiffnessAndOptions)
                fix("1.0 5 threshold uniform 0.75 1.25 reform uniform 0.3 0.1"););
   TEST_FAILURE(".*ERROR: Fix eq/contacts reform gaussian: need a finite mean and sd > 0.*",
                fix("1.0 5 threshold uniform 0.75 1.25 reform gaussian 0.1 0"););
-  TEST_FAILURE(".*ERROR: Fix eq/contacts: reform stretch 2 is not below the largest breaking "
-               "threshold 1.25.*",
+  TEST_FAILURE(".*ERROR: Fix eq/contacts reform delta 2: re-forming stretches reach the largest "
+               "breaking threshold 1.25 \\(probability 1\\); a contact must form below its "
+               "threshold.*",
                fix("1.0 5 threshold uniform 0.75 1.25 reform delta 2.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts reform uniform 0.5 1.3: re-forming stretches reach the "
+               "largest breaking threshold 1.25 \\(probability 0.0625\\).*",
+               fix("1.0 5 threshold uniform 0.75 1.25 reform uniform 0.5 1.3"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts reform gaussian 0.2 0.3: re-forming stretches reach the "
+               "largest breaking threshold 1.25 \\(probability 0.0002333004075\\).*",
+               fix("1.0 5 threshold uniform 0.75 1.25 reform gaussian 0.2 0.3"););
+  // negative stretches count too: |r| must stay below the largest threshold
+  TEST_FAILURE(".*ERROR: Fix eq/contacts reform delta -1.3: re-forming stretches reach the "
+               "largest breaking threshold 1.25.*",
+               fix("1.0 5 threshold uniform 0.75 1.25 reform delta -1.3"););
   TEST_FAILURE(".*ERROR: Fix eq/contacts stiffness uniform: need 0 < lo < hi \\(got lo = -1, hi = "
                "2\\).*",
                fix("1.0 5 threshold uniform 0.75 1.25 stiffness uniform -1 2"););
@@ -167,19 +178,9 @@ TEST_F(EQContactsErrors, ReformStiffnessAndOptions)
 TEST_F(EQContactsErrors, RuntimeChecks)
 {
   HIDE_OUTPUT([&] {
-    fix("1.0 5 threshold uniform 0.75 1.25 reform gaussian 2.0 0.01");
-    command("fix m all move linear 0.5 0.0 0.0");
-    command("timestep 1.0");
-  });
-  TEST_FAILURE(".*ERROR on proc 0: Fix eq/contacts: contact [0-9]+ re-formed with stretch 2.*, "
-               "which is not below the largest breaking threshold \\(1.25\\); check the reform "
-               "distribution.*",
-               command("run 10"););
-  HIDE_OUTPUT([&] {
-    command("unfix c");
     fix("1.0 5 threshold uniform 0.75 1.25 reform delta 1.249");
-    command("unfix m");
     command("fix m all move linear 1.9 0.0 0.0");    // < half the box per step
+    command("timestep 1.0");
   });
   TEST_FAILURE(".*ERROR on proc 0: Fix eq/contacts: contact [0-9]+ broke more than 1000 times in "
                "one step.*reduce the timestep.*",
@@ -220,8 +221,8 @@ TEST_F(EQContactsErrors, MasterEquationCommand)
                command("eq/me"););
   TEST_FAILURE(".*ERROR: eq/me threshold realistic: need xs > 0 \\(got 0\\).*",
                command("eq/me threshold realistic 0"););
-  TEST_FAILURE(".*ERROR: eq/me unknown keyword 'dX'; allowed: threshold, reform, xmax, dx, start, "
-               "crossing, richardson, force, steady, snapshot, summary, exact.*",
+  TEST_FAILURE(".*ERROR: eq/me unknown keyword 'dX'; allowed: threshold, reform, stiffness, dir, "
+               "xmax, dx, start, crossing, richardson, force, steady, snapshot, summary, exact.*",
                command("eq/me threshold realistic 1.0 dX 0.1"););
   TEST_FAILURE(".*ERROR: eq/me dx: expected a number, got 'fine'.*",
                command("eq/me threshold realistic 1.0 dx fine"););

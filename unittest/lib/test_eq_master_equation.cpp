@@ -129,6 +129,55 @@ TEST(MasterEquation, NoReformGivesSurvivalExactly)
   }
 }
 
+TEST(MasterEquation, NoReformRunsPastTheLastBreak)
+{
+  // all contacts have broken long before xmax: the grid empties safely
+  MEOptions o;
+  o.dx = 1e-2;
+  o.Xmax = 20.0;
+  const MEResult r = solve_master_equation(make_uniform(0.75, 1.25), nullptr, o);
+  for (size_t k = 0; k < r.X.size(); ++k) {
+    if (r.X[k] > 1.25 + 1e-9) {
+      EXPECT_EQ(r.F[k], 0.0);
+      EXPECT_EQ(r.attached[k], 0.0);
+    }
+  }
+}
+
+// Contacts re-formed with a negative stretch r draw their threshold above
+// |r| (as fix eq/contacts does): they hold until the stretch reaches |r|.
+// Thresholds uniform [0,1], r = -0.5: a life lasts 1 + E[x_s - 0.5 | x_s >
+// 0.5] = 1.25, int x dx over a life = E[(x_s^2 - 0.25)/2] = 1/6, so
+// Gamma_s = 0.8 and F_k/(N k_c) = (1/6)/1.25 = 2/15.
+TEST(MasterEquation, NegativeReformHoldsUntilAbsoluteStretch)
+{
+  const auto Pc = make_uniform(0.0, 1.0);
+  const auto R = make_delta(-0.5);
+  const SteadyState s = steady_state(*Pc, *R);
+  EXPECT_NEAR(s.Gamma, 0.8, 1e-12);
+  EXPECT_NEAR(s.F, 2.0 / 15.0, 1e-12);
+  MEOptions o;
+  o.dx = 1e-3;
+  o.Xmax = 40.0;
+  const MEResult r = solve_master_equation(Pc, R, o);
+  EXPECT_NEAR(r.F.back(), 2.0 / 15.0, 2e-5);
+  EXPECT_LT(r.max_mass_error, 1e-12);
+  // a smeared R across zero with realistic thresholds: stepper -> steady
+  const auto P2 = make_realistic(1.0);
+  const auto R2 = make_uniform(-0.3, 0.2);
+  const SteadyState s2 = steady_state(*P2, *R2);
+  double err[2];
+  int i = 0;
+  for (double dx : {2e-3, 1e-3}) {
+    o.dx = dx;
+    o.Xmax = 25.0;
+    const MEResult r2 = solve_master_equation(P2, R2, o);
+    err[i++] = std::fabs(r2.F.back() - s2.F);
+  }
+  EXPECT_LT(err[1], 1e-6);
+  EXPECT_GT(std::log2(err[0] / err[1]), 1.7);    // still second order
+}
+
 TEST(SteadyState, KineticForceClosedForms)
 {
   // re-forming at 0: F_k/(N k_c) = <x_s^2> / (2 <x_s>)

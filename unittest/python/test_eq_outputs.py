@@ -36,3 +36,87 @@ def test_outputs_energy_minimize_and_new_atoms(tmp_path):
     # an atom created after the fix is a contact (relaxed where it appears)
     last = rows[-1]
     assert last[9] == 401 and last[8] == 401 and last[6] > run[-1][6]
+
+
+def test_atoms_leaving_and_rejoining_the_group(tmp_path):
+    """An atom that leaves the fix group stops being a contact; when it
+    comes back it forms a fresh, relaxed contact (its break count kept)."""
+    inp = tmp_path / "in.group"
+    inp.write_text("""
+units lj
+dimension 2
+atom_style atomic
+lattice hex 1.1547005383792515
+region box block 0 20 0 10 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+comm_modify cutoff 0.5
+atom_modify sort 0 0.0
+group g id 1:400
+group back id 201:400
+fix c g eq/contacts 1.0 5 threshold uniform 0.75 1.25
+fix m all move linear 1.0 0.0 0.0 units box
+timestep 0.01
+compute sb back reduce sum f_c[1]
+compute nb back reduce sum f_c[4]
+thermo_style custom step f_c[7] c_sb c_nb
+thermo_modify norm no
+thermo 10
+run 150
+group g clear
+group g id 1:200
+run 50
+group g id 201:400
+run 0
+""")
+    log = eqtools.run_lammps(inp, cwd=tmp_path)
+    rows = [[float(v) for v in l.split()] for l in log.splitlines()
+            if len(l.split()) == 4 and l.split()[0].isdigit()]
+    before = [r for r in rows if r[0] == 150][0]
+    assert before[1] == 400 and before[2] > 50 and before[3] > 0     # stretched, broken
+    away = [r for r in rows if r[0] == 200 and r[1] == 200][-1]
+    assert away[2] == 0.0                                            # not contacts now
+    back = rows[-1]
+    assert back[1] == 400 and back[2] == 0.0 and back[3] == before[3]
+
+
+def test_table_file_read_by_rank_0_only(tmp_path):
+    """The table file is read by rank 0 and broadcast: a rank that cannot
+    see the file neither fails nor waits for the others."""
+    import os
+    import shutil
+    import subprocess
+    table = tmp_path / "pc.table"
+    table.write_text("KEY\nN 2\n\n1 0.75 1.0\n2 1.25 1.0\n")
+    inp = tmp_path / "in.table"
+    inp.write_text("""
+units lj
+atom_style atomic
+region box block 0 4 0 4 0 4
+create_box 1 box
+create_atoms 1 random 20 1 NULL
+mass 1 1.0
+fix c all eq/contacts 1.0 5 threshold table pc.table KEY
+run 0
+""")
+    a, b = tmp_path / "A", tmp_path / "B"
+    a.mkdir()
+    b.mkdir()
+    mpirun = os.environ.get("MPIEXEC") or shutil.which("mpirun")
+
+    def mpmd(with_file):
+        for d in (a, b):
+            f = d / "pc.table"
+            if f.exists():
+                f.unlink()
+        shutil.copy(table, with_file / "pc.table")
+        cmd = [mpirun, "-np", "1", "-wdir", str(a), eqtools.lmp_exe(), "-in", str(inp), "-log",
+               "none", ":", "-np", "1", "-wdir", str(b), eqtools.lmp_exe(), "-in", str(inp),
+               "-log", "none"]
+        return subprocess.run(cmd, env=eqtools.mpi_env(), stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, text=True, timeout=120)
+    ok = mpmd(a)          # rank 0 runs in A
+    assert ok.returncode == 0 and "ERROR" not in ok.stdout, ok.stdout[-2000:]
+    bad = mpmd(b)         # rank 0 cannot see it: a clean error on all ranks
+    assert "ERROR: Fix eq/contacts threshold table: cannot open table file 'pc.table'" in bad.stdout

@@ -176,3 +176,60 @@ def test_general_distributions_follow_the_master_equation(tmp_path, contacts, me
     mean = k1 * m[:, 1]
     sd = np.sqrt(np.maximum(k2 * (m[:, 2] ** 2 + m[:, 1] ** 2) - mean ** 2, 0))
     assert np.max(np.abs(eqtools.zscores(F, mean, sd, N, m[:, 5]))) < ZMAX
+
+
+@pytest.mark.parametrize("contacts,me_args", [
+    # re-formed behind the anchor: held until the stretch reaches |r|
+    ("threshold uniform 0.0 1.0 reform delta -0.5",
+     ["threshold", "uniform", 0.0, 1.0, "reform", "delta", -0.5]),
+    # the paper's untruncated Gaussian R(x) reaching below zero
+    ("threshold gaussian 0.5 0.25 reform gaussian 0.0 0.2",
+     ["threshold", "gaussian", 0.5, 0.25, "reform", "gaussian", 0.0, 0.2]),
+])
+def test_negative_reform_stretches_follow_the_master_equation(tmp_path, contacts, me_args):
+    """A contact re-formed with r < 0 draws its threshold above |r| and so
+    cannot break before its stretch reaches |r|; the ME solver holds such
+    contacts the same way."""
+    me, s = me_run(tmp_path / "me", me_args, Xmax=8.0)
+    X, F, _, _, N = eq_run(tmp_path / "eq", nx=90, ny=51, contacts=contacts)
+    m = at(me, X)
+    assert np.max(np.abs(eqtools.zscores(F, m[:, 1], m[:, 2], N, m[:, 5]))) < ZMAX
+
+
+def test_sliding_further_than_the_image_counter_reaches(tmp_path):
+    """LAMMPS counts periodic images in 10 bits (+-512 box lengths); the fix
+    undoes the wrap-around of the counter: sliding 1100 box lengths in a
+    box of width 2 gives the same contacts as in a box 600 times wider."""
+    def run(sub, width):
+        d = tmp_path / sub
+        d.mkdir()
+        inp = d / "in.long"
+        inp.write_text(f"""
+units lj
+dimension 2
+atom_style atomic
+boundary p p p
+region box block 0 {width} 0 2 -0.5 0.5
+create_box 1 box
+region seed block 0 1.5 0 2 -0.5 0.5
+lattice sq 1.0
+create_atoms 1 region seed
+mass 1 1.0
+atom_modify sort 0 0.0
+comm_modify cutoff 0.5
+neighbor 0.5 bin
+neigh_modify every 1 delay 0 check no
+fix c all eq/contacts 1.0 3 threshold uniform 0.75 1.25
+fix m all move linear 1.0 0.0 0.0 units box
+timestep 0.5
+thermo_style custom step f_c[1] f_c[3]
+thermo_modify norm no format float %.15g
+thermo 1100
+run 4400
+""")
+        log = eqtools.run_lammps(inp, cwd=d)
+        assert "Created 4 atoms" in log
+        return [l.split() for l in log.splitlines() if l.split()[:1] == ["4400"]][-1]
+    small, wide = run("small", 2), run("wide", 1200)
+    assert small[2] == wide[2]                              # the same number of breaks
+    assert abs(float(small[1]) - float(wide[1])) < 1e-9    # F equal to rounding

@@ -25,7 +25,11 @@ def test_usage(tmp_path):
     (["threshold", "realistic", 1, "dx", -1], "dx: must be > 0"),
     (["threshold", "realistic", 1, "dx", "abc"], "dx: expected a number, got 'abc'"),
     (["threshold", "realistic", 1, "xmax"], "xmax: missing value"),
-    (["threshold", "realistic", 1, "foo", 1], "unknown keyword 'foo'; allowed: threshold, reform, xmax, dx, start, crossing, richardson, force, steady, snapshot, summary, exact"),
+    (["threshold", "realistic", 1, "foo", 1], "unknown keyword 'foo'; allowed: threshold, reform, stiffness, dir, xmax, dx, start, crossing, richardson, force, steady, snapshot, summary, exact"),
+    (["threshold", "realistic", 1, "dir", "w"], "dir: unknown value 'w'; allowed: x, y, z"),
+    (["threshold", "realistic", 1, "stiffness", "uniform", 0, 1], "stiffness uniform: need 0 < lo < hi"),
+    (["threshold", "realistic", 1, "xmax", 1e-4], "xmax: must be at least dx"),
+    (["threshold", "uniform", 0.75, 1.25, "reform", "uniform", 0.5, 1.3], "reform uniform 0.5 1.3: re-forming stretches reach the largest breaking threshold 1.25 (probability 0.0625)"),
     (["threshold", "realistic", 1, "start", "hot"], "start: unknown value 'hot'; allowed: relaxed, reform"),
     (["threshold", "realistic", 1, "crossing", "half"], "crossing: unknown value 'half'; allowed: exact, step"),
     (["threshold", "realistic", 1, "crossing", "step", "richardson", "yes"], "richardson: only with crossing exact"),
@@ -68,3 +72,46 @@ def test_richardson_removes_the_second_order_error(tmp_path):
     rich = eqtools.run_eqme(base, cwd=tmp_path)
     assert 4e-7 < plain["exact_max_error"] < 6e-7
     assert rich["exact_max_error"] < 1e-11
+
+
+def test_grid_that_does_not_divide_xmax(tmp_path):
+    """xmax is rounded to a whole number of steps, so that Richardson's
+    fine grid ends at the same X (this once read past its end)."""
+    s = eqtools.run_eqme(["threshold", "realistic", 1.0, "xmax", 4, "dx", 0.0015], cwd=tmp_path)
+    assert "NOTE         xmax 4 rounded to 4.0005" in s["stdout"]
+    assert abs(s["kstar"] - 0.174250) < 1e-5
+    assert abs(s["xmax"] - 4.0005) < 1e-12
+
+
+def test_contacts_that_never_reform(tmp_path):
+    s = eqtools.run_eqme(["threshold", "uniform", 0.75, 1.25, "reform", "none", "xmax", 20,
+                          "force", "f.dat"], cwd=tmp_path)
+    f = eqtools.load(tmp_path / "f.dat")
+    X = f[:, 0]
+    J = np.clip((1.25 - X) / 0.5, 0, 1)
+    assert np.max(np.abs(f[:, 1] - X * J)) < 1e-12
+    assert "kinetic_force" not in s and abs(s["kstar"] - 2.5) < 3e-3
+
+
+def test_stiffness_distribution_scales_the_force(tmp_path):
+    base = ["threshold", "realistic", 1.0, "xmax", 6]
+    plain = eqtools.run_eqme(base, cwd=tmp_path)
+    f = eqtools.run_eqme(base + ["stiffness", "gaussian", 1.0, 0.5, "dir", "y"], cwd=tmp_path)
+    assert abs(f["stiffness_mean"] - 1.0276239) < 1e-6          # truncated at 0
+    for key in ("kinetic_force", "kstar", "static_peak"):
+        assert abs(f[key] - f["stiffness_mean"] * plain[key]) < 1e-12 * max(1, plain[key])
+
+
+def test_static_peak_and_kstar_when_nothing_breaks(tmp_path):
+    s = eqtools.run_eqme(["threshold", "uniform", 0.5, 1.5, "xmax", 0.01, "dx", 1e-4], cwd=tmp_path)
+    assert "static peak  none: F still increases at xmax" in s["stdout"]
+    assert s["kstar"] == 0.0 and "static_peak" not in s
+
+
+def test_table_found_through_lammps_potentials(tmp_path):
+    import os
+    env = dict(os.environ, LAMMPS_POTENTIALS=str(eqtools.ROOT / "potentials"))
+    p = subprocess.run([eqtools.eqme_exe(), "threshold", "table", "eq_thresholds.table", "BIMODAL",
+                        "xmax", "2"], cwd=tmp_path, env=env, stdout=subprocess.PIPE,
+                       stderr=subprocess.PIPE, text=True)
+    assert p.returncode == 0 and "table eq_thresholds.table BIMODAL" in p.stdout

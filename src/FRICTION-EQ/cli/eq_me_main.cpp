@@ -5,8 +5,11 @@
 
    keywords (same syntax as fix eq/contacts and the eq/me command):
      threshold uniform lo hi | gaussian mean sd | realistic xs | table file key
+               (a table file is searched as named, then in $LAMMPS_POTENTIALS)
      reform    delta x0 | uniform lo hi | gaussian mean sd | none   (delta 0)
-     xmax X          largest slider displacement                  (8)
+     stiffness constant | uniform lo hi | gaussian mean sd  (constant)
+     dir x|y|z       accepted and ignored (as in fix eq/contacts)
+     xmax X          largest slider displacement, rounded to a multiple of dx (8)
      dx h            stretch grid spacing = slider step           (1e-3)
      start relaxed|reform   Q(x;0) = delta(x) or R(x)             (relaxed)
      crossing exact|step    continuous ME, or the discrete model of
@@ -26,6 +29,7 @@
 #include "eq_me_job.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -41,8 +45,18 @@ int main(int argc, char **argv)
               << "see doc/src/eq_me.rst\n";
     return args.empty() ? 2 : 0;
   }
+  // table files: as named, else in $LAMMPS_POTENTIALS (as LAMMPS searches)
+  auto load = [](const std::string &file) -> std::string {
+    try {
+      return feq::load_file(file);
+    } catch (const feq::SpecError &) {
+      const char *pot = std::getenv("LAMMPS_POTENTIALS");
+      if (!pot || file.find('/') != std::string::npos) throw;
+      return feq::load_file(std::string(pot) + "/" + file);
+    }
+  };
   try {
-    const feq::MEJob job = feq::parse_me_job(args, feq::parse_number);
+    const feq::MEJob job = feq::parse_me_job(args, feq::parse_number, load);
     const feq::MEReport rep = feq::run_me_job(job);
     std::fputs(rep.text.c_str(), stdout);
   } catch (const feq::SpecError &e) {

@@ -21,6 +21,7 @@ const double NaN = std::numeric_limits<double>::quiet_NaN();
 const double SQRTPI = 1.7724538509055160273;
 const double SQRT2 = 1.4142135623730950488;
 const double INV_SQRT2PI = 0.39894228040143267794;
+const double EPS = std::numeric_limits<double>::epsilon();
 
 std::string fmtnum(double v)
 {
@@ -210,20 +211,16 @@ class RealisticDist : public Distribution {
     if (p <= 0.0) return 0.0;
     if (p >= 1.0) return INF;
     if (p > 0.5) return isf(1.0 - p);
-    // cdfW is increasing; Newton from below with bisection safeguard
-    double lo = 0.0, hi = 1.7;    // cdfW(1.7) > 0.5
-    double W = std::sqrt(2.0 * p);
-    for (int it = 0; it < 200; ++it) {
-      const double f = cdfW(W) - p;
-      if (f > 0.0) hi = W; else lo = W;
+    // cdf = W^2/2 - W^3/3 + ...: invert the series for the start, then
+    // Newton (cdf is increasing, convex below W = 1: one overshoot, then
+    // monotone quadratic convergence)
+    const double r = std::sqrt(2.0 * p);
+    double W = r * (1.0 + r / 3.0);
+    for (int it = 0; it < 60; ++it) {
       const double d = W * std::exp(-W);
-      double Wn = (d > 0.0) ? W - f / d : 0.5 * (lo + hi);
-      if (!(Wn > lo && Wn < hi)) Wn = 0.5 * (lo + hi);
-      if (std::fabs(Wn - W) <= 1e-17 * W || hi - lo <= 4e-16 * hi) {
-        W = Wn;
-        break;
-      }
-      W = Wn;
+      const double dW = (cdfW(W) - p) / d;
+      W = std::min(std::max(W - dW, 0.5 * W), 1.7);
+      if (std::fabs(dW) <= 4.0 * EPS * W) break;
     }
     return xs * std::sqrt(W);
   }
@@ -232,22 +229,16 @@ class RealisticDist : public Distribution {
     if (q >= 1.0) return 0.0;
     if (q <= 0.0) return INF;
     if (q > 0.5) return quantile(1.0 - q);
-    // g(W) = log1p(W) - W - log(q), decreasing for W > 0
-    const double lq = std::log(q);
-    double lo = 1.6, hi = 2.0 - 2.0 * lq + 10.0;
-    double W = -lq + std::log1p(-lq);
-    if (!(W > lo && W < hi)) W = 0.5 * (lo + hi);
-    for (int it = 0; it < 200; ++it) {
-      const double g = std::log1p(W) - W - lq;
-      if (g > 0.0) lo = W; else hi = W;
-      const double dg = -W / (1.0 + W);
-      double Wn = W - g / dg;
-      if (!(Wn > lo && Wn < hi)) Wn = 0.5 * (lo + hi);
-      if (std::fabs(Wn - W) <= 1e-16 * W) {
-        W = Wn;
-        break;
-      }
-      W = Wn;
+    // (1+W) e^-W = q:  W = L + log(1+W), L = -log q; two fixed-point steps
+    // for the start, then Newton on g(W) = log(1+W) - W + L (decreasing,
+    // concave: quadratic convergence after at most one overshoot)
+    const double L = -std::log(q);
+    double W = L + std::log1p(L + std::log1p(L));
+    for (int it = 0; it < 60; ++it) {
+      const double g = std::log1p(W) - W + L;
+      const double dW = g * (1.0 + W) / W;    // -g/g'
+      W = std::max(W + dW, 0.5 * W);
+      if (std::fabs(dW) <= 4.0 * EPS * W) break;
     }
     return xs * std::sqrt(W);
   }
@@ -583,11 +574,25 @@ DistributionPtr make_table(const std::vector<double> &x, const std::vector<doubl
 
 /* ---------------------------------------------------------------------- */
 
-void read_table_file(const std::string &path, const std::string &keyword, std::vector<double> &x,
-                     std::vector<double> &p)
+std::string load_file(const std::string &path)
 {
   std::ifstream in(path);
   if (!in) throw SpecError("cannot open table file '" + path + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void read_table_file(const std::string &path, const std::string &keyword, std::vector<double> &x,
+                     std::vector<double> &p)
+{
+  read_table_text(load_file(path), path, keyword, x, p);
+}
+
+void read_table_text(const std::string &text, const std::string &path, const std::string &keyword,
+                     std::vector<double> &x, std::vector<double> &p)
+{
+  std::istringstream in(text);
   std::string line;
   int lineno = 0;
   bool found = false;
@@ -648,6 +653,27 @@ void read_table_file(const std::string &path, const std::string &keyword, std::v
 
 /* ---------------------------------------------------------------------- */
 
+double reform_beyond_thresholds(const Distribution &Pc, const Distribution &R)
+{
+  const double top = Pc.upper();
+  if (!std::isfinite(top)) return 0.0;
+  const double above = 1.0 - R.cdf(std::nextafter(top, -INF));    // P(r >= top)
+  const double below = R.cdf(-top);                               // P(r <= -top)
+  return std::min(1.0, above + below);
+}
+
+void check_reform(const Distribution &Pc, const DistributionSpec &reform)
+{
+  if (!reform.dist) return;
+  const double w = reform_beyond_thresholds(Pc, *reform.dist);
+  if (w > REFORM_BEYOND_TOLERANCE)
+    throw SpecError("reform " + reform.text + ": re-forming stretches reach the largest breaking "
+                    "threshold " + fmtnum(Pc.upper()) + " (probability " + fmtnum(w) +
+                    "); a contact must form below its threshold");
+}
+
+/* ---------------------------------------------------------------------- */
+
 double parse_number(const std::string &token)
 {
   errno = 0;
@@ -677,7 +703,7 @@ const char *role_styles(Role role)
 }
 
 DistributionSpec parse_distribution(Role role, const std::vector<std::string> &args, size_t &pos,
-                                    const NumberParser &number, const FileResolver &resolve)
+                                    const NumberParser &number, const FileLoader &load)
 {
   const std::string kw = role_keyword(role);
   if (pos >= args.size())
@@ -735,10 +761,9 @@ DistributionSpec parse_distribution(Role role, const std::vector<std::string> &a
                         std::to_string(args.size() - pos));
       const std::string file = args[pos++];
       const std::string key = args[pos++];
-      const std::string path = resolve ? resolve(file) : file;
       std::vector<double> x, p;
       try {
-        read_table_file(path.empty() ? file : path, key, x, p);
+        read_table_text(load ? load(file) : load_file(file), file, key, x, p);
       } catch (const SpecError &e) {
         throw SpecError(std::string("table: ") + e.what());
       }

@@ -81,6 +81,11 @@ DistributionPtr make_table(const std::vector<double> &x, const std::vector<doubl
 // Throws SpecError naming the file, keyword and line on any problem.
 void read_table_file(const std::string &path, const std::string &keyword, std::vector<double> &x,
                      std::vector<double> &p);
+// The same from the file's contents (name: for messages).
+void read_table_text(const std::string &text, const std::string &name, const std::string &keyword,
+                     std::vector<double> &x, std::vector<double> &p);
+// The contents of a file; throws SpecError "cannot open table file '...'".
+std::string load_file(const std::string &path);
 
 // Standard normal helpers (exposed for tests).
 double normal_cdf(double z);
@@ -102,13 +107,24 @@ struct DistributionSpec {
 
 // number parser: converts one token or throws (LAMMPS passes utils::numeric)
 using NumberParser = std::function<double(const std::string &)>;
-// file resolver: maps a file name to a readable path (LAMMPS passes its
-// potential-file lookup); the identity when empty
-using FileResolver = std::function<std::string(const std::string &)>;
+// file loader: returns the contents of a table file named in the input, or
+// throws SpecError.  LAMMPS reads it on rank 0 (with its potential-file
+// search path) and broadcasts it, so every rank sees the same file or the
+// same error; the default reads the named file.
+using FileLoader = std::function<std::string(const std::string &)>;
 
 // Parses the values after a keyword, starting at args[pos]; advances pos.
 DistributionSpec parse_distribution(Role role, const std::vector<std::string> &args, size_t &pos,
-                                    const NumberParser &number, const FileResolver &resolve = {});
+                                    const NumberParser &number, const FileLoader &load = {});
+
+// Probability that a re-forming stretch r lies at or beyond the largest
+// breaking threshold, |r| >= max x_s (0 when P_c is unbounded): such a
+// contact could never hold.  check_reform throws a SpecError naming the
+// reform keyword when that probability exceeds REFORM_BEYOND_TOLERANCE;
+// below it, fix eq/contacts draws r from R truncated to |r| < max x_s.
+constexpr double REFORM_BEYOND_TOLERANCE = 1e-12;
+double reform_beyond_thresholds(const Distribution &Pc, const Distribution &R);
+void check_reform(const Distribution &Pc, const DistributionSpec &reform);
 
 // Strict default number parser (whole token, finite).
 double parse_number(const std::string &token);

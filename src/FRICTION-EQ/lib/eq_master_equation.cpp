@@ -75,7 +75,7 @@ double integrate(const std::function<double(double)> &f, double a, double b,
 
 MasterEquation::MasterEquation(DistributionPtr Pc_, DistributionPtr R_, double dx_, double tail,
                                Crossing crossing_) :
-    Pc(std::move(Pc_)), R(std::move(R_)), dx(dx_), nstep(0), jlo(0), jhi(0), wlo(0), whi(0),
+    Pc(std::move(Pc_)), R(std::move(R_)), dx(dx_), nstep(0), jlo(0), jhi(-1), wlo(0), whi(-1),
     w_rebreak(0.0), crossing(crossing_), last_rate(0.0)
 {
   if (!Pc) throw SpecError("master equation: missing threshold distribution");
@@ -91,18 +91,18 @@ MasterEquation::MasterEquation(DistributionPtr Pc_, DistributionPtr R_, double d
   }
   double top = Pc->upper();
   if (!std::isfinite(top)) top = Pc->isf(tail);
-  top = std::max(top, rhi) + 2.0 * dx;
+  top = std::max(top, std::max(rhi, -rlo)) + 2.0 * dx;
   const long jneg = std::max(0L, (long) std::ceil(-std::min(rlo, 0.0) / dx)) + 2;
   const long jpos = (long) std::ceil(top / dx) + 1;
-  const size_t n = size_t(jneg + jpos + 1);
+  const long n = jneg + jpos + 1;
   if (n > 200000000) throw SpecError("master equation: grid too large; increase dx");
   x.resize(n);
-  for (size_t j = 0; j < n; ++j) x[j] = double(long(j) - jneg) * dx;
+  for (long j = 0; j < n; ++j) x[j] = double(j - jneg) * dx;
 
   // per-point break probability over one step and mean elapsed fraction
   brk.assign(n, 1.0);
   theta.assign(n, 0.5);
-  for (size_t j = 0; j + 1 < n; ++j) {
+  for (long j = 0; j + 1 < n; ++j) {
     const double a = x[j], b = x[j + 1];
     const double sa = Pc->sf(a);
     if (!(sa > 0.0)) continue;    // beyond the support: everything breaks
@@ -120,17 +120,17 @@ MasterEquation::MasterEquation(DistributionPtr Pc_, DistributionPtr R_, double d
 
   // re-injection weights (hat functions: mass and first moment exact)
   w.assign(n, 0.0);
+  is_held.assign(n, 0);
   if (R) {
     if (R->is_point()) {
       const double x0 = R->mean();
       const double f = (x0 - x[0]) / dx;
-      size_t k = size_t(std::floor(f));
-      k = std::min(k, n - 2);
+      long k = std::min((long) std::floor(f), n - 2);
       const double t = f - double(k);
       w[k] += 1.0 - t;
       w[k + 1] += t;
     } else {
-      for (size_t k = 0; k + 1 < n; ++k) {
+      for (long k = 0; k + 1 < n; ++k) {
         const double a = x[k], b = x[k + 1];
         const double mass = R->cdf(b) - R->cdf(a);
         if (mass <= 0.0) continue;
@@ -147,51 +147,115 @@ MasterEquation::MasterEquation(DistributionPtr Pc_, DistributionPtr R_, double d
     while (wlo < n && w[wlo] == 0.0) ++wlo;
     whi = n - 1;
     while (whi > wlo && w[whi] == 0.0) --whi;
+    for (long k = wlo; k <= whi; ++k) {
+      // negative re-forming stretches that thresholds could lie below
+      if (w[k] > 0.0 && x[k] < 0.0 && Pc->cdf(-x[k]) > 0.0) {
+        Held h;
+        h.k = k;
+        h.len = std::lround(-2.0 * x[k] / dx);
+        h.release = k + h.len;
+        h.ring.assign(h.len, 0.0);
+        h.M = h.A1 = h.A2 = h.A3 = 0.0;
+        held.push_back(h);
+        is_held[k] = 1;
+      }
+    }
     if (crossing == Crossing::EXACT)
-      for (size_t k = wlo; k <= whi; ++k) w_rebreak += w[k] * brk[k];
+      for (long k = wlo; k <= whi; ++k) w_rebreak += w[k] * brk[k];
   }
   m.assign(n, 0.0);
+}
+
+void MasterEquation::extend(long lo, long hi)
+{
+  if (jlo > jhi) {
+    jlo = lo;
+    jhi = hi;
+  } else {
+    jlo = std::min(jlo, lo);
+    jhi = std::max(jhi, hi);
+  }
+}
+
+// add mass of the given age (0 or 1 steps) to a delay line
+void MasterEquation::hold(Held &h, double mass, long age)
+{
+  if (mass == 0.0) return;
+  h.ring[((nstep - age) % h.len + h.len) % h.len] += mass;
+  const double a = double(age);
+  h.M += mass;
+  h.A1 += mass * a;
+  h.A2 += mass * a * a;
+  h.A3 += mass * a * a * a;
 }
 
 void MasterEquation::start(MEStart how)
 {
   std::fill(m.begin(), m.end(), 0.0);
+  for (auto &h : held) {
+    std::fill(h.ring.begin(), h.ring.end(), 0.0);
+    h.M = h.A1 = h.A2 = h.A3 = 0.0;
+  }
   nstep = 0;
   last_rate = 0.0;
+  jlo = 0;
+  jhi = -1;
   if (how == MEStart::REFORM && R) {
-    m = w;
-    jlo = wlo;
-    jhi = whi;
+    for (long k = wlo; k <= whi; ++k)
+      if (!is_held[k]) m[k] = w[k];
+    for (auto &h : held) hold(h, w[h.k], 0);
+    extend(wlo, whi);
   } else {
     // x = 0 is grid point j0
-    size_t j0 = 0;
+    long j0 = 0;
     while (x[j0] < -0.5 * dx) ++j0;
     m[j0] = 1.0;
-    jlo = jhi = j0;
+    extend(j0, j0);
   }
 }
 
 void MasterEquation::step()
 {
-  const size_t n = m.size();
+  const long n = (long) m.size();
+  ++nstep;
   double b0 = 0.0, b1 = 0.0;    // broken mass re-formed at r, at r + dx
   // transport by one grid point with survival; mass at the last point breaks
-  if (jhi == n - 1) {
+  if (jlo <= jhi && jhi == n - 1) {
     b0 += m[n - 1] * theta[n - 1];
     b1 += m[n - 1] * (1.0 - theta[n - 1]);
     m[n - 1] = 0.0;
     --jhi;
   }
-  for (size_t j = jhi + 1; j-- > jlo;) {
-    const double mj = m[j];
-    const double b = mj * brk[j];
-    b0 += b * theta[j];
-    b1 += b * (1.0 - theta[j]);
-    m[j + 1] = mj - b;
+  if (jlo <= jhi) {
+    for (long j = jhi; j >= jlo; --j) {
+      const double mj = m[j];
+      const double b = mj * brk[j];
+      b0 += b * theta[j];
+      b1 += b * (1.0 - theta[j]);
+      m[j + 1] = mj - b;
+    }
+    m[jlo] = 0.0;
+    ++jlo;
+    ++jhi;
   }
-  m[jlo] = 0.0;
-  ++jlo;
-  ++jhi;
+  // held contacts age by one step; those that reach |r_k| join the grid
+  for (auto &h : held) {
+    h.A3 += 3.0 * h.A2 + 3.0 * h.A1 + h.M;
+    h.A2 += 2.0 * h.A1 + h.M;
+    h.A1 += h.M;
+    double &slot = h.ring[nstep % h.len];
+    const double rel = slot;
+    slot = 0.0;
+    if (rel != 0.0) {
+      const double L = double(h.len);
+      h.M -= rel;
+      h.A1 -= rel * L;
+      h.A2 -= rel * L * L;
+      h.A3 -= rel * L * L * L;
+      m[h.release] += rel;
+      extend(h.release, h.release);
+    }
+  }
   // A break at elapsed fraction theta leaves (1-theta) dx of travel after
   // re-forming at r: weight theta at r, 1-theta at r + dx.  The part that
   // travels survives that grid step (S_k); the part that breaks again
@@ -199,47 +263,60 @@ void MasterEquation::step()
   // Without this, contacts re-formed where P(x) > 0 would miss their
   // immediate re-breaks and the scheme would drop to first order.
   double again = 0.0;
-  if (R) {
+  if (R && b0 + b1 > 0.0) {
     again = b1 * w_rebreak;
     const double b0t = b0 + again;
-    for (size_t k = wlo; k <= whi; ++k) {
+    for (long k = wlo; k <= whi; ++k) {
+      if (is_held[k]) continue;
       m[k] += b0t * w[k];
       m[k + 1] += b1 * w[k] * (1.0 - brk[k]);
     }
-    jlo = std::min(jlo, wlo);
-    jhi = std::max(jhi, whi + 1);
+    for (auto &h : held) {
+      hold(h, b0t * w[h.k], 0);
+      hold(h, b1 * w[h.k], 1);
+    }
+    extend(wlo, std::min(whi + 1, n - 1));
   }
-  jhi = std::min(jhi, n - 1);
-  while (jlo < jhi && m[jlo] == 0.0) ++jlo;
+  while (jlo <= jhi && m[jlo] == 0.0) ++jlo;
   last_rate = (b0 + b1 + again) / dx;
-  ++nstep;
 }
 
 double MasterEquation::attached() const
 {
   double s = 0.0;
-  for (size_t j = jlo; j <= jhi; ++j) s += m[j];
+  for (long j = jlo; j <= jhi; ++j) s += m[j];
+  for (const auto &h : held) s += h.M;
   return s;
 }
 
 double MasterEquation::mean_stretch() const
 {
   double s = 0.0;
-  for (size_t j = jlo; j <= jhi; ++j) s += m[j] * x[j];
+  for (long j = jlo; j <= jhi; ++j) s += m[j] * x[j];
+  for (const auto &h : held) s += x[h.k] * h.M + dx * h.A1;
   return s;
 }
 
 double MasterEquation::second_moment() const
 {
   double s = 0.0;
-  for (size_t j = jlo; j <= jhi; ++j) s += m[j] * x[j] * x[j];
+  for (long j = jlo; j <= jhi; ++j) s += m[j] * x[j] * x[j];
+  for (const auto &h : held) {
+    const double r = x[h.k];
+    s += r * r * h.M + 2.0 * r * dx * h.A1 + dx * dx * h.A2;
+  }
   return s;
 }
 
 double MasterEquation::third_moment() const
 {
   double s = 0.0;
-  for (size_t j = jlo; j <= jhi; ++j) s += m[j] * x[j] * x[j] * x[j];
+  for (long j = jlo; j <= jhi; ++j) s += m[j] * x[j] * x[j] * x[j];
+  for (const auto &h : held) {
+    const double r = x[h.k];
+    s += r * r * r * h.M + 3.0 * r * r * dx * h.A1 + 3.0 * r * dx * dx * h.A2 +
+        dx * dx * dx * h.A3;
+  }
   return s;
 }
 
@@ -247,6 +324,12 @@ std::vector<double> MasterEquation::density() const
 {
   std::vector<double> q(m.size());
   for (size_t j = 0; j < m.size(); ++j) q[j] = m[j] / dx;
+  for (const auto &h : held)
+    for (long i = 0; i < h.len; ++i) {
+      if (h.ring[i] == 0.0) continue;
+      const long age = ((nstep - i) % h.len + h.len) % h.len;
+      q[h.k + age] += h.ring[i] / dx;
+    }
   return q;
 }
 
@@ -299,49 +382,87 @@ SteadyState steady_state(const Distribution &Pc, const Distribution &R, int npoi
   double rlo = R.lower(), rhi = R.upper();
   if (!std::isfinite(rlo)) rlo = R.quantile(1e-17);
   if (!std::isfinite(rhi)) rhi = R.isf(1e-17);
-  top = std::max(top, rhi);
-  std::vector<double> breaks = Pc.breakpoints();
-  for (double b : R.breakpoints()) breaks.push_back(b);
+  top = std::max(top, std::max(rhi, -rlo));
+  const std::vector<double> pcb = Pc.breakpoints();
 
-  // survival of a contact formed at r up to stretch x: J(x)/J(r)
-  auto surv_from = [&](double r, double xx) {
-    const double jr = Pc.sf(r);
-    return jr > 0.0 ? Pc.sf(xx) / jr : 0.0;
+  // T1(y) = int_y^top x J(x) dx on a grid of [0, top] (cumulative from the
+  // top, Gauss-Legendre per cell, cells split at the kinks of P_c)
+  const int ncell = 4096;
+  std::vector<double> g;
+  for (int i = 0; i <= ncell; ++i) g.push_back(top * i / ncell);
+  for (double b : pcb)
+    if (b > 0.0 && b < top) g.push_back(b);
+  std::sort(g.begin(), g.end());
+  g.erase(std::unique(g.begin(), g.end()), g.end());
+  auto xsf = [&](double xx) { return xx * Pc.sf(xx); };
+  std::vector<double> T1(g.size(), 0.0);
+  for (size_t i = g.size() - 1; i-- > 0;) T1[i] = T1[i + 1] + integrate(xsf, g[i], g[i + 1], {}, 1);
+  auto tail1 = [&](double y) {
+    if (y >= top) return 0.0;
+    size_t i = std::upper_bound(g.begin(), g.end(), y) - g.begin();    // g[i-1] <= y < g[i]
+    i = std::max<size_t>(i, 1);
+    return T1[i] + integrate(xsf, y, g[i], {}, 1);
   };
-  // mean lifetime and mean of int x dx over a life formed at r
+  // A contact re-formed at r holds until its stretch reaches r+ = |r| (its
+  // threshold lies above |r|), then breaks with the hazard of P_c:
+  //   life(r)  = (r+ - r) + int_{r+} J / J(r+),
+  //   xlife(r) = int_r^{r+} x dx + int_{r+} x J / J(r+).
+  auto plus = [](double r) { return std::fabs(r); };
   auto life = [&](double r) {
-    const double jr = Pc.sf(r);
-    return jr > 0.0 ? Pc.sf_integral(r, top) / jr : 0.0;
+    const double rp = plus(r), j = Pc.sf(rp);
+    return j > 0.0 ? (rp - r) + Pc.sf_integral(rp, top) / j : 0.0;
   };
   auto xlife = [&](double r) {
-    const double jr = Pc.sf(r);
-    if (!(jr > 0.0)) return 0.0;
-    return integrate([&](double xx) { return xx * Pc.sf(xx); }, r, top, breaks, 64) / jr;
+    const double rp = plus(r), j = Pc.sf(rp);
+    return j > 0.0 ? 0.5 * (rp * rp - r * r) + tail1(rp) / j : 0.0;
   };
+  // kinks of the integrands: those of R and P_c, mirrored (r -> |r|)
+  std::vector<double> breaks{0.0};
+  for (double b : R.breakpoints()) {
+    breaks.push_back(b);
+    breaks.push_back(-b);
+  }
+  for (double b : pcb) {
+    breaks.push_back(b);
+    breaks.push_back(-b);
+  }
   if (R.is_point()) {
     const double r0 = R.mean();
     s.lifetime = life(r0);
     s.F = s.lifetime > 0.0 ? xlife(r0) / s.lifetime : r0;
   } else {
-    s.lifetime = integrate([&](double r) { return R.pdf(r) * life(r); }, rlo, rhi, breaks, 32);
-    const double num = integrate([&](double r) { return R.pdf(r) * xlife(r); }, rlo, rhi, breaks, 8);
-    s.F = num / s.lifetime;
+    s.lifetime = integrate([&](double r) { return R.pdf(r) * life(r); }, rlo, rhi, breaks, 16);
+    s.F = integrate([&](double r) { return R.pdf(r) * xlife(r); }, rlo, rhi, breaks, 16) /
+        s.lifetime;
   }
   s.Gamma = s.lifetime > 0.0 ? 1.0 / s.lifetime : INF;
 
-  // density on a grid: Q_s(x) = Gamma int_{-inf}^{x} R(r) J(x)/J(r) dr
+  // Q_s(x): contacts re-formed at r <= x, still held or surviving:
+  //   x < 0:  Gamma P(r <= x)
+  //   x >= 0: Gamma [ P(r < -x) + J(x) int_0^x (R(u) + R(-u)) / J(u) du ]
   const double xlo = std::min(rlo, 0.0);
   s.x.resize(npoints);
   s.Q.resize(npoints);
+  double C = 0.0, xprev = 0.0;
+  auto cf = [&](double u) {
+    const double j = Pc.sf(u);
+    return j > 0.0 ? (R.pdf(u) + R.pdf(-u)) / j : 0.0;
+  };
   for (int i = 0; i < npoints; ++i) {
     const double xx = xlo + (top - xlo) * i / (npoints - 1);
     s.x[i] = xx;
     double q;
     if (R.is_point()) {
-      q = (xx >= R.mean()) ? surv_from(R.mean(), xx) : 0.0;
+      const double r0 = R.mean(), rp = plus(r0);
+      if (xx < r0) q = 0.0;
+      else if (xx < rp) q = 1.0;
+      else q = Pc.sf(rp) > 0.0 ? Pc.sf(xx) / Pc.sf(rp) : 0.0;
+    } else if (xx < 0.0) {
+      q = R.cdf(xx);
     } else {
-      q = integrate([&](double r) { return R.pdf(r) * surv_from(r, xx); }, rlo, std::min(xx, rhi),
-                    breaks, 4);
+      C += integrate(cf, xprev, xx, breaks, 1);
+      xprev = xx;
+      q = R.cdf(std::nextafter(-xx, -INF)) + Pc.sf(xx) * C;    // P(r < -x) + ...
     }
     s.Q[i] = s.Gamma * q;
   }
@@ -353,12 +474,12 @@ SteadyState steady_state(const Distribution &Pc, const Distribution &R, int npoi
 Extremum critical_stiffness(const MEResult &r)
 {
   Extremum e;
-  e.value = -INF;
   for (size_t k = 0; k + 1 < r.F.size(); ++k) {
     const double slope = -(r.F[k + 1] - r.F[k]) / r.dx;
     if (slope > e.value) {
       e.value = slope;
       e.X = 0.5 * (r.X[k] + r.X[k + 1]);
+      e.found = true;
     }
   }
   return e;
@@ -372,6 +493,7 @@ Extremum static_peak(const MEResult &r)
   while (k + 1 < n && r.F[k + 1] >= r.F[k]) ++k;
   e.value = r.F[k];
   e.X = r.X[k];
+  e.found = k + 1 < n;
   if (k > 0 && k + 1 < n) {
     const double fm = r.F[k - 1], f0 = r.F[k], fp = r.F[k + 1];
     const double den = fm - 2.0 * f0 + fp;

@@ -58,8 +58,7 @@ class MasterEquation {
   double third_moment() const;    // int x^3 Q dx
   double rate() const { return last_rate; }    // Gamma over the last step
   const std::vector<double> &grid() const { return x; }
-  std::vector<double> density() const;    // Q(x_j;X) = m_j / dx
-  const std::vector<double> &masses() const { return m; }
+  std::vector<double> density() const;    // Q(x_j;X) = (probability at x_j) / dx
   double spacing() const { return dx; }
 
  private:
@@ -67,11 +66,27 @@ class MasterEquation {
   double dx;
   long nstep;
   std::vector<double> x, m, brk, theta, w;
-  size_t jlo, jhi;      // active range of m (inclusive)
-  size_t wlo, whi;      // support of the re-injection weights
+  long jlo, jhi;        // active range of m (inclusive); empty when jlo > jhi
+  long wlo, whi;        // support of the re-injection weights
   double w_rebreak;     // sum_k w_k (1 - S_k): re-formed mass that breaks at once
   Crossing crossing;
   double last_rate;
+
+  // Contacts re-formed with a negative stretch r cannot break before
+  // their stretch reaches |r| (their threshold is drawn above |r|, as in
+  // fix eq/contacts): they are "held" in a delay line per re-forming
+  // grid point k and join the grid at |r_k|.  Ages are counted in steps;
+  // the moments of the age keep the force sums O(1) per queue and step.
+  struct Held {
+    long k, release, len;     // birth point, grid point of |r_k|, steps to get there
+    std::vector<double> ring; // mass by birth step modulo len
+    double M, A1, A2, A3;     // sum m, m a, m a^2, m a^3 (a = age in steps)
+  };
+  std::vector<Held> held;
+  std::vector<char> is_held;  // per grid point: re-forming there is held
+
+  void extend(long lo, long hi);
+  void hold(Held &h, double mass, long age);
 };
 
 struct MEOptions {
@@ -108,11 +123,14 @@ SteadyState steady_state(const Distribution &Pc, const Distribution &R, int npoi
 struct Extremum {
   double value = 0.0;
   double X = 0.0;
+  bool found = false;    // false: no maximum / no drop of F within [0, xmax]
 };
 
-// K*/K_s = max_X -dF/dX / (N k_c)  (forward differences at step midpoints)
+// K*/K_s = max_X -dF/dX / (N k_c)  (forward differences at step midpoints);
+// 0 (found = false) when F never decreases within [0, xmax]
 Extremum critical_stiffness(const MEResult &r);
-// first maximum of F(X)/(N k_c) (static friction peak), parabolic refinement
+// first maximum of F(X)/(N k_c) (static friction peak), parabolic refinement;
+// found = false when F still increases at xmax
 Extremum static_peak(const MEResult &r);
 
 // Composite Gauss-Legendre quadrature of f over [a,b] split at the given

@@ -50,16 +50,18 @@ bool exact_applies(const MEJob &job)
 
 const char *me_job_keywords()
 {
-  return "threshold, reform, xmax, dx, start, crossing, richardson, force, steady, snapshot, "
-         "summary, exact";
+  return "threshold, reform, stiffness, dir, xmax, dx, start, crossing, richardson, force, steady, "
+         "snapshot, summary, exact";
 }
 
 MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &number,
-                   const FileResolver &resolve)
+                   const FileLoader &load)
 {
   MEJob job;
   job.reform.dist = make_delta(0.0);
   job.reform.text = "delta 0";
+  job.stiffness.dist = make_delta(1.0);
+  job.stiffness.text = "constant";
   bool have_threshold = false;
   int richardson = -1;    // -1: not given (auto)
   size_t pos = 0;
@@ -78,10 +80,16 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
   while (pos < args.size()) {
     const std::string kw = args[pos++];
     if (kw == "threshold") {
-      job.threshold = parse_distribution(Role::THRESHOLD, args, pos, number, resolve);
+      job.threshold = parse_distribution(Role::THRESHOLD, args, pos, number, load);
       have_threshold = true;
     } else if (kw == "reform") {
-      job.reform = parse_distribution(Role::REFORM, args, pos, number, resolve);
+      job.reform = parse_distribution(Role::REFORM, args, pos, number, load);
+    } else if (kw == "stiffness") {
+      job.stiffness = parse_distribution(Role::STIFFNESS, args, pos, number, load);
+    } else if (kw == "dir") {
+      const std::string &v = value(kw);
+      if (v != "x" && v != "y" && v != "z")
+        throw SpecError("dir: unknown value '" + v + "'; allowed: x, y, z");
     } else if (kw == "xmax") {
       job.opt.Xmax = num(kw);
       if (!(job.opt.Xmax > 0.0)) throw SpecError("xmax: must be > 0");
@@ -122,6 +130,15 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
   if (!have_threshold)
     throw SpecError(std::string("the threshold keyword is required; allowed styles: ") +
                     role_styles(Role::THRESHOLD));
+  check_reform(*job.threshold.dist, job.reform);
+  // xmax on the grid: a whole number of steps of dx (Richardson needs the
+  // fine grid to end at the same X)
+  job.xmax_requested = job.opt.Xmax;
+  const long nsteps = std::lround(job.opt.Xmax / job.opt.dx);
+  if (nsteps < 1)
+    throw SpecError("xmax: must be at least dx (xmax = " + std::to_string(job.opt.Xmax) +
+                    ", dx = " + std::to_string(job.opt.dx) + ")");
+  job.opt.Xmax = nsteps * job.opt.dx;
   if (job.opt.start == MEStart::REFORM && !job.reform.dist)
     throw SpecError("start reform: needs contacts that re-form (reform none given)");
   if (richardson == 1 && job.opt.crossing == Crossing::STEP)
@@ -150,6 +167,8 @@ MEReport run_me_job(const MEJob &job, bool write_files)
     MEOptions half = opt;
     half.dx = 0.5 * opt.dx;
     const MEResult fine = solve_master_equation(job.threshold.dist, job.reform.dist, half);
+    if (fine.F.size() != 2 * res.F.size() - 1)
+      throw SpecError("richardson: fine grid does not end at xmax (internal error)");
     for (size_t k = 0; k < res.F.size(); ++k) {
       res.F[k] = (4.0 * fine.F[2 * k] - res.F[k]) / 3.0;
       res.sd[k] = fine.sd[2 * k];
@@ -157,27 +176,43 @@ MEReport run_me_job(const MEJob &job, bool write_files)
       res.skew[k] = fine.skew[2 * k];
     }
   }
+  const Distribution &Pc = *job.threshold.dist;
+  SteadyState ss;
+  if (job.reform.dist) ss = steady_state(Pc, *job.reform.dist);
+
+  // per-contact stiffness k_i = kc f: F scales with <f>, the spread of one
+  // contact's force is sqrt(<f^2><x^2> - <f>^2<x>^2)
+  const double f1 = job.stiffness.dist->mean(), f2 = job.stiffness.dist->second_moment();
+  if (job.stiffness.text != "constant") {
+    for (size_t k = 0; k < res.F.size(); ++k) {
+      const double x1 = res.F[k], x2 = res.sd[k] * res.sd[k] + x1 * x1;
+      res.F[k] = f1 * x1;
+      res.sd[k] = std::sqrt(std::max(0.0, f2 * x2 - f1 * f1 * x1 * x1));
+    }
+    ss.F *= f1;
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   MEReport rep;
   auto &v = rep.values;
-  const Distribution &Pc = *job.threshold.dist;
   v["threshold_mean"] = Pc.mean();
   v["threshold_sd"] = std::sqrt(std::max(0.0, Pc.variance()));
+  v["stiffness_mean"] = f1;
   const Extremum peak = static_peak(res);
   const Extremum kstar = critical_stiffness(res);
-  v["static_peak"] = peak.value;
-  v["static_peak_X"] = peak.X;
+  if (peak.found) {
+    v["static_peak"] = peak.value;
+    v["static_peak_X"] = peak.X;
+  }
   v["kstar"] = kstar.value;
-  v["kstar_X"] = kstar.X;
+  if (kstar.found) v["kstar_X"] = kstar.X;
   v["force_at_xmax"] = res.F.back();
   v["mass_error"] = res.max_mass_error;
   v["seconds"] = seconds;
   v["dx"] = opt.dx;
-  SteadyState ss;
+  v["xmax"] = opt.Xmax;
   if (job.reform.dist) {
-    ss = steady_state(Pc, *job.reform.dist);
     v["kinetic_force"] = ss.F;
     v["steady_rate"] = ss.Gamma;
   }
@@ -187,16 +222,33 @@ MEReport run_me_job(const MEJob &job, bool write_files)
   t += format("  threshold    %s   <x_s> = %.10g, sd = %.6g\n", job.threshold.text.c_str(),
               Pc.mean(), v["threshold_sd"]);
   t += format("  reform       %s\n", job.reform.text.c_str());
+  if (job.stiffness.text != "constant")
+    t += format("  stiffness    %s: <k_i> = %.10g k_c (F below includes it)\n",
+                job.stiffness.text.c_str(), f1);
   t += format("  grid         dx = %g, X in [0, %g], %zu stretch points, start %s, crossing %s%s\n",
               opt.dx, opt.Xmax, res.x.size(), opt.start == MEStart::RELAXED ? "relaxed" : "reform",
               opt.crossing == Crossing::EXACT ? "exact" : "step",
               job.richardson ? ", Richardson (dx, dx/2)" : "");
-  t += format("  static peak  F_s/(N k_c) = %.10f at X = %.6f\n", peak.value, peak.X);
+  if (std::fabs(job.xmax_requested - opt.Xmax) > 1e-12 * opt.Xmax)
+    t += format("  NOTE         xmax %g rounded to %g, a whole number of steps dx\n",
+                job.xmax_requested, opt.Xmax);
+  const double sd = v["threshold_sd"];
+  if (opt.crossing == Crossing::EXACT && opt.dx > 0.25 * sd)
+    t += format("  WARNING      dx = %g does not resolve the spread of the thresholds (sd = %g): "
+                "use dx <= %g\n",
+                opt.dx, sd, 0.05 * sd);
+  if (peak.found)
+    t += format("  static peak  F_s/(N k_c) = %.10f at X = %.6f\n", peak.value, peak.X);
+  else
+    t += "  static peak  none: F still increases at xmax\n";
   if (job.reform.dist)
     t += format("  kinetic      F_k/(N k_c) = %.10f (stationary solution), Gamma_s = %.10f\n", ss.F,
                 ss.Gamma);
   t += format("  F(xmax)      F/(N k_c)   = %.10f\n", res.F.back());
-  t += format("  stiffness    K*/K_s      = %.10f at X = %.6f\n", kstar.value, kstar.X);
+  if (kstar.found)
+    t += format("  stiffness    K*/K_s      = %.10f at X = %.6f\n", kstar.value, kstar.X);
+  else
+    t += "  stiffness    K*/K_s      = 0: F never decreases within [0, xmax]\n";
   t += format("  probability  max |int Q - 1| = %.3g\n", res.max_mass_error);
   t += format("  time         %.3f s\n", seconds);
 

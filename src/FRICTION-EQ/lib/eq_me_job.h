@@ -7,7 +7,11 @@
    keywords:
      threshold uniform lo hi | gaussian mean sd | realistic xs | table file key
      reform    delta x0 | uniform lo hi | gaussian mean sd | none  (delta 0)
-     xmax X                 (8)      dx h                      (1e-3)
+     stiffness constant | uniform lo hi | gaussian mean sd  (constant): F
+               is reported for k_i = kc f, i.e. scaled by <f>
+     dir x|y|z              accepted for symmetry with fix eq/contacts
+     xmax X                 (8, rounded to a multiple of dx)
+     dx h                   (1e-3)
      start relaxed|reform   (relaxed)
      crossing exact|step    (exact)
      richardson yes|no      (yes with crossing exact, no with crossing step)
@@ -28,16 +32,17 @@
 namespace feq {
 
 struct MEJob {
-  DistributionSpec threshold, reform;
+  DistributionSpec threshold, reform, stiffness;
   MEOptions opt;
   bool richardson = true;    // set from "auto" after parsing
   std::string force_file, steady_file, summary_file, exact_file;
   std::vector<std::pair<double, std::string>> snapshots;
+  double xmax_requested = 0.0;    // before rounding to a multiple of dx
 };
 
 // Parses keyword/value pairs; throws SpecError naming the keyword.
 MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &number,
-                   const FileResolver &resolve = {});
+                   const FileLoader &load = {});
 
 struct MEReport {
   std::map<std::string, double> values;    // kstar, kinetic_force, ...

@@ -39,8 +39,16 @@ inline Philox4x32 philox4x32(Philox4x32 ctr, std::array<uint32_t, 2> key, int ro
   return ctr;
 }
 
-// Streams: independent sequences of one contact.
-enum Stream : uint32_t { STREAM_THRESHOLD = 0, STREAM_REFORM = 1, STREAM_STIFFNESS = 2 };
+// Streams: independent sequences of one contact.  A contact formed again
+// when its atom re-enters the group draws from the streams offset by
+// STREAM_REENTRY (keyed by its break count), so it does not repeat the
+// draws of its first formation.
+enum Stream : uint32_t {
+  STREAM_THRESHOLD = 0,
+  STREAM_REFORM = 1,
+  STREAM_STIFFNESS = 2,
+  STREAM_REENTRY = 8
+};
 
 // A uniform variate u in the open interval (0,1) together with 1-u, both
 // exact (52-bit grid shifted by half a unit): samplers use whichever tail

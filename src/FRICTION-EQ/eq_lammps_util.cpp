@@ -1,0 +1,59 @@
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: shared helpers (see eq_lammps_util.h)
+------------------------------------------------------------------------- */
+
+#include "eq_lammps_util.h"
+
+#include "lammps.h"
+#include "pointers.h"
+#include "utils.h"
+
+#include <mpi.h>
+#include <string>
+
+using namespace LAMMPS_NS;
+
+feq::NumberParser EQUtil::number_parser(LAMMPS *lmp)
+{
+  return [lmp](const std::string &tok) -> double {
+    if (!utils::is_double(tok)) throw feq::SpecError("not a number");
+    return utils::numeric(FLERR, tok.c_str(), false, lmp);
+  };
+}
+
+namespace {
+void bcast_string(std::string &s, MPI_Comm world)
+{
+  long n = (long) s.size();
+  MPI_Bcast(&n, 1, MPI_LONG, 0, world);
+  s.resize(n);
+  if (n > 0) MPI_Bcast(&s[0], (int) n, MPI_CHAR, 0, world);
+}
+}    // namespace
+
+feq::FileLoader EQUtil::file_loader(LAMMPS *lmp)
+{
+  return [lmp](const std::string &file) -> std::string {
+    int me;
+    MPI_Comm_rank(lmp->world, &me);
+    std::string text, err;
+    int ok = 1;
+    if (me == 0) {
+      const std::string path = utils::get_potential_file_path(file);
+      try {
+        if (path.empty()) throw feq::SpecError("cannot open table file '" + file + "'");
+        text = feq::load_file(path);
+      } catch (const feq::SpecError &e) {
+        ok = 0;
+        err = e.what();
+      }
+    }
+    MPI_Bcast(&ok, 1, MPI_INT, 0, lmp->world);
+    if (!ok) {
+      bcast_string(err, lmp->world);
+      throw feq::SpecError(err);
+    }
+    bcast_string(text, lmp->world);
+    return text;
+  };
+}
