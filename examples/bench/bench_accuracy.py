@@ -87,9 +87,10 @@ def main():
     ap.add_argument("--nx", type=int, default=120)
     ap.add_argument("--ny", type=int, default=68)
     ap.add_argument("--seed", type=int, default=7)
+    ap.add_argument("--out", default=str(HERE / "out"), help="folder for the runs' files")
     a = ap.parse_args()
-    out = HERE / "out"
-    out.mkdir(exist_ok=True)
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
 
     me = me_table(out)
     print("1. master-equation solver: max |F - F_ref|/(N k_c) on X in [0, 8]")

@@ -48,9 +48,10 @@ def main():
     ap.add_argument("--driver", default="noforce", choices=["noforce", "move"])
     ap.add_argument("--work", type=float, default=2e8, help="contact-steps per run (sets steps)")
     ap.add_argument("--repeat", type=int, default=3, help="runs per configuration (minimum taken)")
+    ap.add_argument("--out", default=str(HERE / "out"), help="folder for the runs' files")
     a = ap.parse_args()
-    out = HERE / "out"
-    out.mkdir(exist_ok=True)
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
     print(f"fix eq/contacts benchmark: thresholds uniform [0.75,1.25], dX = 0.01 (a break per "
           f"contact every ~100 steps), driver {a.driver}")
     print(f"{'N':>9} {'ranks':>5} {'steps':>6} {'total':>9} {'baseline':>9} {'eq/contacts':>11}   "

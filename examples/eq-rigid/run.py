@@ -59,7 +59,11 @@ def run(scale=1, nprocs=1, seed=4711, dX=0.01, out=None, plot=True, quiet=False)
     idx = np.rint(X / DX_ME).astype(int)
     F_me, sd_me = mef[idx, 1], mef[idx, 2]
     z = eqtools.zscores(eq[:, 2], F_me, sd_me, N, mef[idx, 5])
-    zs = z[X > 0]
+    # the points that are tested: before the first break (X < 0.75) every
+    # contact has stretch X exactly (sd = 0), and where breaks are still
+    # too rare for a normal limit zscores() leaves the point out
+    tested = (sd_me > 0) & (np.abs(mef[idx, 5]) / math.sqrt(N) <= 0.05)
+    zs = z[tested]
 
     centers, counts, total = eqtools.read_histo(out / "Qs.dat")
     width = centers[1] - centers[0]
@@ -78,8 +82,9 @@ def run(scale=1, nprocs=1, seed=4711, dX=0.01, out=None, plot=True, quiet=False)
               f"uniform [0.75, 1.25], re-forming at 0, {nprocs} MPI rank(s)")
         print(f"  ME solver vs exact renewal solution: max |dF|/(N k_c) = {me['exact_max_error']:.2e}"
               f" (dx = {DX_ME}, {me['seconds']:.2f} s)")
-        print(f"  EQ vs ME, F(X) on (0, {XMAX:g}], {len(zs)} points: max |z| = {res['max_z']:.2f}, "
-              f"rms z = {res['rms_z']:.2f}   [z = (F_EQ - F_ME) / (sd/sqrt(N)); expected rms 1]")
+        print(f"  EQ vs ME, F(X) on [0, {XMAX:g}], {len(zs)} points with breaks: max |z| = "
+              f"{res['max_z']:.2f}, rms z = {res['rms_z']:.2f}   [z = (F_EQ - F_ME) / (sd/sqrt(N)); "
+              f"expected rms 1]")
         print(f"  steady Q_s(x) at X = {XSTEADY:g}: chi2 = {chi2:.1f} for {dof} dof, p = {pval:.3f}")
         print(f"  ME: F_k/(N k_c) = {ss['kinetic_force']:.7f} (= <x_s^2>/(2<x_s>) = 0.5104167), "
               f"F_s/(N k_c) = {me['static_peak']:.4f} at X = {me['static_peak_X']:.3f}, "
