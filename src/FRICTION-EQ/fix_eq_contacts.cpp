@@ -122,6 +122,9 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   } catch (const feq::SpecError &e) {
     error->all(FLERR, "Fix eq/contacts {}", e.what());
   }
+  if (group->dynamic[igroup])
+    error->all(FLERR, "Fix eq/contacts: group {} is dynamic; contacts need a static group",
+               group->names[igroup]);
   const bigint ncontacts = group->count(igroup);
   if (ncontacts == 0)
     error->all(FLERR, "Fix eq/contacts: group {} has no atoms", group->names[igroup]);
@@ -131,10 +134,10 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   stiffness_const = stiffness.text == "constant";
   // re-forming stretches are drawn from R truncated to |r| < max x_s (a
   // weight below 1e-12, checked above) so that no draw can abort a run
-  const double top = threshold.dist->upper();
-  if (reform.dist && std::isfinite(top)) {
-    reform_cdf_lo = reform.dist->cdf(-top);
-    reform_cdf_hi = reform.dist->cdf(std::nextafter(top, -top));
+  reform_top = threshold.dist->effective_upper();
+  if (reform.dist) {
+    reform_cdf_lo = reform.dist->cdf(-reform_top);
+    reform_cdf_hi = reform.dist->cdf(std::nextafter(reform_top, -reform_top));
   } else {
     reform_cdf_lo = 0.0;
     reform_cdf_hi = 1.0;
@@ -297,7 +300,7 @@ double FixEQContacts::draw_reform(tagint tag, bigint event, uint32_t stream)
   if (reform_point) return reform_value;
   const feq::Uniform u = feq::draw(seed, tag, event, stream);
   const double r = reform.dist->sample(u);
-  if (std::fabs(r) < threshold.dist->upper()) return r;
+  if (std::fabs(r) < reform_top) return r;
   return reform.dist->quantile(reform_cdf_lo + u.u * (reform_cdf_hi - reform_cdf_lo));
 }
 

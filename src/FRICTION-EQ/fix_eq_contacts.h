@@ -69,6 +69,7 @@ class FixEQContacts : public Fix {
   bool reform_point, stiffness_const;
   double reform_value;
   double reform_cdf_lo, reform_cdf_hi;    // R truncated to |r| < max threshold
+  double reform_top;                      // max threshold (effective for unbounded P_c)
 
   double **state;    // per-atom state, NCOL columns (array_atom)
 

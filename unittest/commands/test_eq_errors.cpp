@@ -84,6 +84,12 @@ TEST_F(EQContactsErrors, Arguments)
                fix("1.0 5 thresholds uniform 0.75 1.25"););
   TEST_FAILURE(".*ERROR: Fix eq/contacts: group nobody has no atoms.*",
                command("fix c nobody eq/contacts 1.0 5 threshold uniform 0.75 1.25"););
+  HIDE_OUTPUT([&] {
+    command("region left block 0 2 INF INF INF INF");
+    command("group moving dynamic all region left");
+  });
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: group moving is dynamic; contacts need a static group.*",
+               command("fix c moving eq/contacts 1.0 5 threshold uniform 0.75 1.25"););
 }
 
 TEST_F(EQContactsErrors, Threshold)

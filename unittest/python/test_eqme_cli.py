@@ -30,6 +30,8 @@ def test_usage(tmp_path):
     (["threshold", "realistic", 1, "stiffness", "uniform", 0, 1], "stiffness uniform: need 0 < lo < hi"),
     (["threshold", "realistic", 1, "xmax", 1e-4], "xmax: must be at least dx"),
     (["threshold", "uniform", 0.75, 1.25, "reform", "uniform", 0.5, 1.3], "reform uniform 0.5 1.3: re-forming stretches reach the largest breaking threshold 1.25 (probability 0.0625)"),
+    (["threshold", "gaussian", 1.0, 0.01, "reform", "delta", 1.5], "reform delta 1.5: re-forming stretches reach the largest breaking threshold 1.37"),
+    (["threshold", "realistic", 1.0, "reform", "delta", 40], "reform delta 40: re-forming stretches reach the largest breaking threshold 26.4"),
     (["threshold", "realistic", 1, "start", "hot"], "start: unknown value 'hot'; allowed: relaxed, reform"),
     (["threshold", "realistic", 1, "crossing", "half"], "crossing: unknown value 'half'; allowed: exact, step"),
     (["threshold", "realistic", 1, "crossing", "step", "richardson", "yes"], "richardson: only with crossing exact"),
@@ -115,3 +117,12 @@ def test_table_found_through_lammps_potentials(tmp_path):
                         "xmax", "2"], cwd=tmp_path, env=env, stdout=subprocess.PIPE,
                        stderr=subprocess.PIPE, text=True)
     assert p.returncode == 0 and "table eq_thresholds.table BIMODAL" in p.stdout
+
+
+def test_static_peak_at_a_kink_and_exact_with_stiffness(tmp_path):
+    s = eqtools.run_eqme(["threshold", "uniform", 0.75, 1.25, "stiffness", "uniform", 0.5, 2.0,
+                          "exact", "e.dat"], cwd=tmp_path)
+    # peak of <x> at the kink X = 0.75, scaled by <f> = 1.25; the exact
+    # solution is compared after the same scaling
+    assert abs(s["static_peak"] - 1.25 * 0.75) < 1e-10 and abs(s["static_peak_X"] - 0.75) < 1e-12
+    assert s["exact_max_error"] < 1e-11

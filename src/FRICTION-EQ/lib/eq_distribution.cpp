@@ -494,6 +494,12 @@ double normal_quantile(double p)
 
 /* ---------------------------------------------------------------------- */
 
+double Distribution::effective_upper() const
+{
+  const double u = upper();
+  return std::isfinite(u) ? u : isf(1e-300);
+}
+
 double Distribution::hazard(double x) const
 {
   const double s = sf(x);
@@ -655,8 +661,7 @@ void read_table_text(const std::string &text, const std::string &path, const std
 
 double reform_beyond_thresholds(const Distribution &Pc, const Distribution &R)
 {
-  const double top = Pc.upper();
-  if (!std::isfinite(top)) return 0.0;
+  const double top = Pc.effective_upper();
   const double above = 1.0 - R.cdf(std::nextafter(top, -INF));    // P(r >= top)
   const double below = R.cdf(-top);                               // P(r <= -top)
   return std::min(1.0, above + below);
@@ -668,7 +673,7 @@ void check_reform(const Distribution &Pc, const DistributionSpec &reform)
   const double w = reform_beyond_thresholds(Pc, *reform.dist);
   if (w > REFORM_BEYOND_TOLERANCE)
     throw SpecError("reform " + reform.text + ": re-forming stretches reach the largest breaking "
-                    "threshold " + fmtnum(Pc.upper()) + " (probability " + fmtnum(w) +
+                    "threshold " + fmtnum(Pc.effective_upper()) + " (probability " + fmtnum(w) +
                     "); a contact must form below its threshold");
 }
 

@@ -49,6 +49,9 @@ class Distribution {
   virtual std::vector<double> breakpoints() const { return {}; }
 
   double variance() const { return second_moment() - mean() * mean(); }
+  // upper() when finite, else where the survival function underflows
+  // (sf < 1e-300): no draw can land above it
+  double effective_upper() const;
   double hazard(double x) const;    // pdf/sf: breaking rate per unit stretch
 
   // Inverse-transform draw from a uniform variate (the tail with the

@@ -129,7 +129,7 @@ struct Extremum {
 // K*/K_s = max_X -dF/dX / (N k_c)  (forward differences at step midpoints);
 // 0 (found = false) when F never decreases within [0, xmax]
 Extremum critical_stiffness(const MEResult &r);
-// first maximum of F(X)/(N k_c) (static friction peak), parabolic refinement;
+// first maximum of F(X)/(N k_c) on the grid (static friction peak);
 // found = false when F still increases at xmax
 Extremum static_peak(const MEResult &r);
 
