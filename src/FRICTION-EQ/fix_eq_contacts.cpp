@@ -25,7 +25,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <limits>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;

@@ -51,7 +51,6 @@ class MasterEquation {
   void start(MEStart how);
   void step();    // X -> X + dx
 
-  double X() const { return nstep * dx; }
   double attached() const;        // int Q dx (1 unless contacts never re-form)
   double mean_stretch() const;    // int x Q dx  = F / (N k_c)
   double second_moment() const;   // int x^2 Q dx
@@ -59,7 +58,6 @@ class MasterEquation {
   double rate() const { return last_rate; }    // Gamma over the last step
   const std::vector<double> &grid() const { return x; }
   std::vector<double> density() const;    // Q(x_j;X) = (probability at x_j) / dx
-  double spacing() const { return dx; }
 
  private:
   DistributionPtr Pc, R;
