@@ -47,7 +47,7 @@ const char *KEYWORDS = "threshold, reform, stiffness, dir, crossing, start, refo
 /* ---------------------------------------------------------------------- */
 
 FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), reform_force(0), break_tol(0.0), pair(nullptr), avfp(nullptr),
+    Fix(lmp, narg, arg), reform_force(1), break_tol(0.0), pair(nullptr), avfp(nullptr),
     av_flag(0), rounds_last(0), rigid_shift(0), nmax_list(0), blist(nullptr), dsv(nullptr), state(nullptr)
 {
   if (narg < 5)
