@@ -110,16 +110,22 @@ def solve_steady(kappa, workdir, b=PAPER_B, dx=0.002):
     return d[:, 0], d[:, 1], s
 
 
-def solve_onset(kappa, workdir, b=PAPER_B, c=PAPER_C, dx=0.002, xmax=3.0):
-    """ME F(X)/(N k_c) with the onset thresholds P_ci: (X, F)."""
+def solve_onset(kappa, workdir, b=PAPER_B, c=PAPER_C, dx=0.002, xmax=3.0, beta_eps=None):
+    """ME F(X)/(N k_c) with the onset thresholds P_ci: (X, F).  beta_eps =
+    (beta0, eps0) overrides the c1, c2, kappa_c forms."""
     workdir = Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
     tag = "k%g" % kappa
-    alpha0, beta0, eps0 = onset_params(kappa, c)
+    if beta_eps is None:
+        alpha0, beta0, eps0 = onset_params(kappa, c)
+    else:
+        beta0, eps0 = beta_eps
+        alpha0 = ((XS - DXS) / XC) * (1.0 - 1.0 / beta0)
     lo = alpha0 * XC + (XS - DXS) / beta0
     hi = alpha0 * XC + (XS + DXS) / beta0
     x = np.linspace(lo, hi, 2001)
-    p = onset_threshold_density(x, kappa, c)
+    p = np.power(x, eps0)
+    p /= np.trapz(p, x)
     table = workdir / ("pci_%s.table" % tag)
     write_table(table, "PCI", x, p)
     ff = workdir / ("F_%s.dat" % tag)
@@ -127,3 +133,127 @@ def solve_onset(kappa, workdir, b=PAPER_B, c=PAPER_C, dx=0.002, xmax=3.0):
                  ["dx", dx, "xmax", xmax, "force", ff], cwd=workdir)
     d = load(ff)
     return d[:, 0], d[:, 1], s
+
+
+def onset_defined(kappa, c=PAPER_C):
+    """P_ci exists below the breakdown strength kappa_c only."""
+    return kappa < c[2]
+
+
+# ------------------------------------------------------------ closed forms
+# (used to fit the effective parameters quickly; the comparisons quoted in
+# the docs use eq-me)
+
+def steady_closed_form(x, alpha, beta, gamma):
+    """Stationary ME solution for the effective distributions, by
+    quadrature: Q_s(x) = J(x) int_{-inf}^x R(xi) / J(xi) dxi / norm, where
+    J is the survival function of the thresholds (a re-formed contact's
+    threshold lies above its stretch)."""
+    x = np.asarray(x, float)
+    sig = gamma * math.sqrt(2.0) * XC
+    lo = alpha * XC + (XS - DXS) / beta
+    hi = alpha * XC + (XS + DXS) / beta
+    pc = smeared_uniform(x, lo, hi, sig)
+    dx = x[1] - x[0]
+    cdf = np.concatenate([[0.0], np.cumsum(0.5 * (pc[1:] + pc[:-1]) * dx)])
+    surv = np.clip(1.0 - cdf / cdf[-1], 1e-300, None)
+    if gamma > 0:
+        r = np.exp(-0.5 * ((x - alpha * XC) / (gamma * XC)) ** 2)
+    else:
+        r = np.zeros_like(x)
+        r[np.argmin(np.abs(x - alpha * XC))] = 1.0 / dx
+    r /= r.sum() * dx
+    inner = np.cumsum(r / surv) * dx
+    q = surv * inner
+    q[surv < 1e-250] = 0.0
+    return q / (q.sum() * dx)
+
+
+def bin_average(xf, qf, edges):
+    """Average of a fine-grid density over histogram bins."""
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (qf[1:] + qf[:-1]) * np.diff(xf))])
+    ce = np.interp(edges, xf, cum, left=0.0, right=cum[-1])
+    return np.diff(ce) / np.diff(edges)
+
+
+def fit_steady(centers, q_eq, start):
+    """Fit (alpha, beta, gamma) of the steady effective distributions to an
+    EQ histogram density (least squares over the bins)."""
+    from scipy.optimize import minimize
+    w = centers[1] - centers[0]
+    edges = np.concatenate([centers - 0.5 * w, [centers[-1] + 0.5 * w]])
+    xf = np.linspace(edges[0], edges[-1], 8001)
+
+    def cost(p):
+        a, b, g = p
+        if b < 1.0 or g < 1e-4 or a < 0:
+            return 1e9
+        qm = bin_average(xf, steady_closed_form(xf, a, b, g), edges)
+        return float(np.sum((qm - q_eq) ** 2) * w)
+
+    res = minimize(cost, start, method="Nelder-Mead",
+                   options={"xatol": 1e-5, "fatol": 1e-10, "maxiter": 2000})
+    return res.x, res.fun
+
+
+def fit_b_global(kappas, hists, start=PAPER_B):
+    """b1..b4 fitted to all EQ histograms at once: the sum of the L1 distances of
+    Q_s(x; alpha, beta, gamma(b, kappa)) over all bins and kappas
+    (hists: list of (centers, density))."""
+    from scipy.optimize import minimize
+    prep = []
+    for (c, q) in hists:
+        w = c[1] - c[0]
+        edges = np.concatenate([c - 0.5 * w, [c[-1] + 0.5 * w]])
+        prep.append((edges, np.linspace(edges[0], edges[-1], 8001), q, w))
+
+    def cost(b):
+        tot = 0.0
+        for k, (edges, xf, q, w) in zip(kappas, prep):
+            a, be, g = steady_params(k, b)
+            if be < 1.0 or a < 0 or g <= 1e-4:
+                return 1e9
+            qm = bin_average(xf, steady_closed_form(xf, a, be, g), edges)
+            tot += float(np.sum(np.abs(qm - q)) * w)
+        return tot
+
+    res = minimize(cost, start, method="Nelder-Mead",
+                   options={"xatol": 1e-5, "fatol": 1e-12, "maxiter": 4000})
+    return tuple(float(v) for v in res.x)
+
+
+def fit_b(kappas, alphas, betas, gammas):
+    """b1..b4 from per-kappa fits: beta = 1 + b1 kappa, alpha beta = b2 kappa
+    (least squares through the origin), gamma = b3 alpha - b4 alpha^2."""
+    k = np.asarray(kappas, float)
+    a = np.asarray(alphas, float)
+    b = np.asarray(betas, float)
+    g = np.asarray(gammas, float)
+    b1 = float(np.sum(k * (b - 1.0)) / np.sum(k * k))
+    b2 = float(np.sum(k * a * b) / np.sum(k * k))
+    A = np.vstack([a, -a * a]).T
+    b3, b4 = np.linalg.lstsq(A, g, rcond=None)[0]
+    return (b1, b2, float(b3), float(b4))
+
+
+def l1_distance(centers, q_eq, x_me, q_me):
+    """int |Q_EQ - Q_ME| dx over the histogram (ME averaged over the bins)."""
+    w = centers[1] - centers[0]
+    edges = np.concatenate([centers - 0.5 * w, [centers[-1] + 0.5 * w]])
+    qm = bin_average(np.asarray(x_me, float), np.asarray(q_me, float), edges)
+    return float(np.sum(np.abs(q_eq - qm)) * w)
+
+
+def lattice_sum(lam, power=1.0):
+    """S = sum over the triangular lattice (a = 1) of 1/r^power for
+    0 < r <= lam: the mean-field coupling sum_j k_ij / (ftilde)."""
+    n = int(lam) + 2
+    tot = 0.0
+    for i in range(-2 * n, 2 * n + 1):
+        for j in range(-2 * n, 2 * n + 1):
+            x = i + 0.5 * j
+            y = j * math.sqrt(3.0) / 2.0
+            r = math.hypot(x, y)
+            if 0 < r <= lam * (1 + 1e-12):
+                tot += r ** -power
+    return tot
