@@ -19,11 +19,18 @@ avalanche) for each kappa and seed give F(X) exactly between avalanches
    picking a noisy maximum); mean and standard error over the seeds.
 
 The quartic derivative's window bias is O(w^4): applied to the ME curve
-at kappa = 0 it gives the bias of the estimator (printed).  Above the
+at kappa = 0 it gives the bias of the estimator (printed).  F(X) is a
+random walk between the avalanches, so the noise of the derivative grows
+only as w^-1/2 and a small window is affordable; the interaction makes
+the drop after the static peak narrow (width ~0.1 at kappa = 0.1), which
+a wide window smooths away.  WINDOW = 0.05 is the main value, 0.1 and
+0.3 are printed as a resolution check (where they agree within the
+errors the drop is resolved).  Above the
 avalanche threshold the drop of F after the static peak is carried by a
 few avalanches (K*_eff = infinity): printed are the largest avalanche
-(breaks in one step, fraction of N) and the largest single force drop,
-as a fraction of the onset drop F_s - F_min.
+of the onset, X <= X* + ONSET (breaks in one step, fraction of N), and
+the largest single force drop there, as a fraction of the onset drop
+F_s - F_min; above ABRUPT the drop counts as abrupt.
 
 The paper's K*_eff ~ beta0 K* with beta0 = 1 + c1 kappa/(1 - kappa/
 kappa_c) (meanfield.onset_params, fitted for the rectangular thresholds of
@@ -51,9 +58,11 @@ KAPPAS = (0.0, 0.005, 0.01, 0.02, 0.03, 0.05, 0.1, 0.2, 0.5, 1.0)
 SEEDS = tuple(range(1, 13))
 XMAX = 2.4           # slider displacement of the runs
 H = 0.002            # grid of F(X)
-WINDOW = 0.2         # half-window of the quartic derivative (value at X*)
-LOCATE = 0.3         # half-window of the quartic derivative (locating X*)
+WINDOW = 0.05        # half-window of the quartic derivative (value at X*)
+LOCATE = 0.1         # half-window of the quartic derivative (locating X*)
+CHECKS = ((0.1, 0.1), (0.3, 0.3))   # (WINDOW, LOCATE): resolution check
 XLO = 0.5            # X* is searched in [XLO, XMAX - LOCATE]
+ONSET = 0.3          # onset avalanches: X <= X* + ONSET
 ABRUPT = 0.5         # largest single drop / (F_s - F_min) above which the
                      # onset drop counts as abrupt (K*_eff = infinity)
 
@@ -116,21 +125,26 @@ def estimate(curves, g, window=None, locate=None, xlo=XLO):
             "per_seed": per_seed}
 
 
-def avalanche_stats(runs, g, curves):
-    """Largest avalanche and largest single force drop over the seeds, and
-    that drop as a fraction of the onset drop F_s - F_min of its run."""
-    big, frac, drop = 0, 0.0, 0.0
+def avalanche_stats(runs, g, curves, xhi):
+    """Avalanches of the onset (X <= xhi): the largest avalanche and the
+    largest single force drop over the seeds, and that drop as a fraction
+    of the onset drop F_s - min F (X in [X_s, xhi]) of its run."""
+    big, frac, drop, xdrop = 0, 0.0, 0.0, 0.0
+    m = g <= xhi
     for d, F in zip(runs, curves):
         X, Fd = d[:, 1], d[:, 2]
         dF = Fd[:-1] + (X[1:] - X[:-1]) - Fd[1:]      # force drop of each avalanche
-        i = int(np.argmax(dF))
-        k = int(np.argmax(F))
-        onset = F[k] - F[k:].min()
-        big = max(big, int(d[:, 3].max()))
+        on = X[1:] <= xhi
+        i = int(np.argmax(np.where(on, dF, -1.0)))
+        Fo = F[m]
+        k = int(np.argmax(Fo))
+        onset = Fo[k] - Fo[k:].min()
+        big = max(big, int(d[1:, 3][on].max()))
         if dF[i] > drop:
             drop = float(dF[i])
+            xdrop = float(X[i + 1])
             frac = float(dF[i] / onset) if onset > 0 else float("inf")
-    return {"largest": big, "drop": drop, "drop_fraction": frac}
+    return {"largest": big, "drop": drop, "drop_fraction": frac, "drop_X": xdrop}
 
 
 def me_reference(out, xmax=XMAX):
@@ -165,12 +179,13 @@ def run(out=None, kappas=KAPPAS, seeds=SEEDS, xmax=XMAX, nx=60, ny=34, plot=True
         runs = [run_eq(k, s, out / "kstar", xmax, nx, ny) for s in seeds]
         curves = [on_grid(d, xmax)[1] for d in runs]
         e = estimate(curves, g)
-        a = avalanche_stats(runs, g, curves)
+        a = avalanche_stats(runs, g, curves, e["x_star"] + ONSET)
         mean = np.mean(curves, axis=0)
         row = {"kappa": k, "ratio": e["kstar"] / kstar, "ratio_se": e["se"] / kstar,
                "x_star": e["x_star"], "per_seed": e["per_seed"] / kstar,
                "largest": a["largest"], "largest_frac": a["largest"] / N,
-               "drop": a["drop"], "drop_fraction": a["drop_fraction"],
+               "drop": a["drop"], "drop_fraction": a["drop_fraction"], "drop_X": a["drop_X"],
+               "checks": [estimate(curves, g, w, l) for w, l in CHECKS],
                "abrupt": a["drop_fraction"] > ABRUPT, "beta0": beta0(k),
                "F_mean": mean, "static_peak": float(mean.max()),
                "slope_mean": slope_curve(mean, LOCATE) / kstar}
@@ -196,14 +211,18 @@ def summary(res):
         % (LOCATE, WINDOW),
         "# its bias on the ME curve at kappa = 0: %+.2e (relative)" % res["bias"],
         "# abrupt: largest single drop > %g (F_s - F_min) -> K*_eff = infinity" % ABRUPT,
-        "# kappa   K*_eff/K*   +-se     X*     beta0(paper, rect.)  largest aval. (/N)  "
-        "largest dF/(N k_c)  /(F_s-F_min)"]
+        "# window checks: " + ", ".join("half-window %g (locate %g)" % c for c in CHECKS),
+        "# kappa  K*_eff/K* +-se    X*    | checks         | beta0(paper,  | largest    (/N)  "
+        "largest dF/(N k_c) at X  /(F_s-F_min)",
+        "#                               |                | rectangular)  | avalanche        "]
+    k0 = res["kstar_me"]
     for r in res["rows"]:
-        b = "%8.3f" % r["beta0"] if r["beta0"] is not None else "   (n/a)"
-        lines.append("%6.3f   %8.3f   %6.3f   %5.3f   %s            %5d (%.3f)       %.4f"
-                     "            %.2f%s" % (r["kappa"], r["ratio"], r["ratio_se"], r["x_star"], b,
-                                            r["largest"], r["largest_frac"], r["drop"],
-                                            r["drop_fraction"], "  abrupt" if r["abrupt"] else ""))
+        b = "%6.3f" % r["beta0"] if r["beta0"] is not None else " (n/a)"
+        chk = " ".join("%5.2f+-%.2f" % (c["kstar"] / k0, c["se"] / k0) for c in r["checks"])
+        lines.append("%6.3f  %6.3f  %5.3f  %5.3f | %s |    %s     | %5d (%.3f)   %.4f at %.2f  %.2f%s"
+                     % (r["kappa"], r["ratio"], r["ratio_se"], r["x_star"], chk, b, r["largest"],
+                        r["largest_frac"], r["drop"], r["drop_X"], r["drop_fraction"],
+                        "  abrupt" if r["abrupt"] else ""))
     return "\n".join(lines)
 
 
@@ -228,10 +247,15 @@ def make_plot(out, res):
     e = np.array([r["ratio_se"] for r in rows])
     ab = np.array([r["abrupt"] for r in rows])
     b.errorbar(k[~ab], y[~ab], yerr=e[~ab], fmt="o", color="C0", ms=4, capsize=2,
-               label="EQ, N = %d (smooth onset)" % res["N"])
+               label="EQ, N = %d, half-window %g" % (res["N"], WINDOW))
     if ab.any():
         b.errorbar(k[ab], y[ab], yerr=e[ab], fmt="s", mfc="none", color="C3", ms=5, capsize=2,
                    label="EQ, abrupt drop: $K^*_{eff} = \\infty$\n(value = smoothed slope)")
+    for i, (w, _) in enumerate(CHECKS):
+        yc = np.array([r["checks"][i]["kstar"] for r in rows]) / res["kstar_me"]
+        ec = np.array([r["checks"][i]["se"] for r in rows]) / res["kstar_me"]
+        b.errorbar(k * (1.03 + 0.03 * i), yc, yerr=ec, fmt="x", color="C%d" % (5 + i), ms=4,
+                   capsize=1, lw=0.6, label="EQ, half-window %g (check)" % w)
     kk = np.linspace(0, 0.0735, 200)
     b.plot(kk, [mf.onset_params(x)[1] for x in kk], "g-", lw=0.8,
            label="paper $\\beta_0$ (rectangular $P_{c0}$)")
