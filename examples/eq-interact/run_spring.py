@@ -41,12 +41,13 @@ LOAD = 3.0         # analysis starts at this stage displacement (near the peak)
 KAPPAS = (0.0, 0.02, 0.05, 0.1, 0.2)
 
 
-def run_one(kappa, out, Kratio=2.0, seed=2024, xend=6.0, nx=60, ny=34, gamma=2.0, nprocs=1):
-    d = Path(out) / ("spring_k%g_K%g_s%d" % (kappa, Kratio, seed))
+def run_one(kappa, out, Kratio=2.0, seed=2024, xend=6.0, nx=60, ny=34, gamma=2.0, dt=0.1,
+            nprocs=1):
+    d = Path(out) / ("spring_k%g_K%g_s%d_dt%g" % (kappa, Kratio, seed, dt))
     d.mkdir(parents=True, exist_ok=True)
     eqtools.run_lammps(HERE / "in.eq-interact-spring",
                        {"kappa": kappa, "xc": XC, "Kratio": Kratio, "seed": seed, "Xend": xend,
-                        "nx": nx, "ny": ny, "gamma": gamma, "v": V_STAGE, "contacts": CONTACTS,
+                        "nx": nx, "ny": ny, "gamma": gamma, "dt": dt, "v": V_STAGE, "contacts": CONTACTS,
                         "out": d}, nprocs=nprocs, cwd=d)
     return eqtools.load(d / "slider.dat")[:, 1:]      # Xs X V F_friction F_spring
 

@@ -751,8 +751,12 @@ double FixEQContacts::break_once(int i, double e)
   if (!std::isfinite(e))
     error->one(FLERR,
                "Fix eq/contacts: force of contact {} is {} (numerical instability: check the "
-               "timestep, the forces, the integrator and the pair eq/elastic coefficients)",
-               tag, e * st[STIFFNESS]);
+               "timestep, the forces, the integrator and the pair eq/elastic coefficients{})",
+               tag, e * st[STIFFNESS],
+               reform_force ? ""
+                            : "; with reform_as stretch a re-formed contact can carry its "
+                              "partners' force beyond its threshold and break without end: use "
+                              "reform_as force or a smaller ftilde");
   const double sign = e > 0.0 ? 1.0 : -1.0;
   const double over = exact ? e - sign * st[THRESHOLD] : 0.0;
   const double s_old = st[STRETCH];
@@ -827,7 +831,8 @@ void FixEQContacts::cascade()
       error->all(FLERR,
                  "Fix eq/contacts: avalanche did not stop after {} rounds ({} breaks); the "
                  "interaction is too strong for the contacts (check the pair eq/elastic "
-                 "coefficients against k_i)", MAX_ROUNDS, size);
+                 "coefficients against k_i{})", MAX_ROUNDS, size,
+                 reform_force ? "" : "; with reform_as stretch use reform_as force or a smaller ftilde");
     if (rounds == 1) trigger = all;
     size += all;
     for (int m = 0; m < nb; m++) {
