@@ -128,8 +128,8 @@ int images(int i, int n, int *d)
 Eigen::Matrix3d box_block(int ix, int iy, int M, bool periodic, int L, const GreenParams &p)
 {
   if (!periodic) {
-    const int dx = ix < M / 2 ? ix : ix - M;
-    const int dy = iy < M / 2 ? iy : iy - M;
+    const int dx = ix < L ? ix : ix - M;    // M >= 2L-1: every |dx| < L appears once
+    const int dy = iy < L ? iy : iy - M;
     if (std::abs(dx) >= L || std::abs(dy) >= L) return Eigen::Matrix3d::Zero();
     return green_block(dx, dy, p);
   }
@@ -139,6 +139,17 @@ Eigen::Matrix3d box_block(int ix, int iy, int M, bool periodic, int L, const Gre
   for (int a = 0; a < nx; ++a)
     for (int b = 0; b < ny; ++b) g += green_block(ax[a], ay[b], p);
   return g / double(nx * ny);
+}
+
+// smallest n' >= n with no prime factor above 7 (fast FFTW sizes)
+int fast_size(int n)
+{
+  for (int m = n;; ++m) {
+    int k = m;
+    for (int p : {2, 3, 5, 7})
+      while (k % p == 0) k /= p;
+    if (k == 1) return m;
+  }
 }
 
 }    // namespace
@@ -189,7 +200,7 @@ void GreenSolver::setup_fft()
   fft.reset(new FFTData);
   FFTData &d = *fft;
   const int L = par.L;
-  d.M = par.periodic ? L : 2 * L;
+  d.M = par.periodic ? L : fast_size(2 * L - 1);    // >= 2L-1: no wrap-around
   d.Mh = d.M / 2 + 1;
   const int M = d.M, Mh = d.Mh;
   const size_t nreal = size_t(M) * M, ncplx = size_t(M) * Mh;
@@ -210,23 +221,27 @@ void GreenSolver::setup_fft()
       d.khat.push_back(k);
     }
 
-  // circulant (Strang) preconditioner: periodic minimum-image kernel on L x L
+  // circulant (Strang) preconditioner: the periodic minimum-image kernel on
+  // a P x P box, P = L (periodic lattice: exact for kappa = 1) or the next
+  // fast FFT size >= L (open array: the lattice is embedded in the box, the
+  // preconditioner is the restriction of the SPD circulant inverse)
   if (opt.precond == GreenPrecond::CIRCULANT) {
-    d.P = L;
-    d.Ph = L / 2 + 1;
-    const size_t pr = size_t(L) * L, pc = size_t(L) * d.Ph;
+    const int P = par.periodic ? L : fast_size(L);
+    d.P = P;
+    d.Ph = P / 2 + 1;
+    const size_t pr = size_t(P) * P, pc = size_t(P) * d.Ph;
     d.prbuf = fftw_alloc_real(pr);
     for (int a = 0; a < nc; ++a) d.pcbuf.push_back(fftw_alloc_complex(pc));
-    d.pfwd = fftw_plan_dft_r2c_2d(L, L, d.prbuf, d.pcbuf[0], FFTW_ESTIMATE);
-    d.pbwd = fftw_plan_dft_c2r_2d(L, L, d.pcbuf[0], d.prbuf, FFTW_ESTIMATE);
+    d.pfwd = fftw_plan_dft_r2c_2d(P, P, d.prbuf, d.pcbuf[0], FFTW_ESTIMATE);
+    d.pbwd = fftw_plan_dft_c2r_2d(P, P, d.pcbuf[0], d.prbuf, FFTW_ESTIMATE);
     std::vector<std::vector<std::complex<double>>> ph(nc * nc,
                                                       std::vector<std::complex<double>>(pc));
     std::vector<fftw_complex> tmp(pc);
     for (int a = 0; a < nc; ++a)
       for (int b = 0; b < nc; ++b) {
-        for (int iy = 0; iy < L; ++iy)
-          for (int ix = 0; ix < L; ++ix)
-            d.prbuf[size_t(iy) * L + ix] = box_block(ix, iy, L, true, L, par)(a, b);
+        for (int iy = 0; iy < P; ++iy)
+          for (int ix = 0; ix < P; ++ix)
+            d.prbuf[size_t(iy) * P + ix] = box_block(ix, iy, P, true, L, par)(a, b);
         fftw_execute_dft_r2c(d.pfwd, d.prbuf, tmp.data());
         for (size_t q = 0; q < pc; ++q) ph[a * nc + b][q] = {tmp[q][0], tmp[q][1]};
       }
@@ -336,10 +351,12 @@ void GreenSolver::precondition(const std::vector<double> &kappa, const Eigen::Ve
       }
   } else {
     const FFTData &d = *fft;
-    const int L = par.L;
-    const size_t pc = size_t(L) * d.Ph;
+    const int L = par.L, P = d.P;
+    const size_t pc = size_t(P) * d.Ph;
     for (int b = 0; b < nc; ++b) {
-      for (int i = 0; i < N; ++i) d.prbuf[i] = r(index(i, b));
+      std::fill(d.prbuf, d.prbuf + size_t(P) * P, 0.0);
+      for (int iy = 0; iy < L; ++iy)
+        for (int ix = 0; ix < L; ++ix) d.prbuf[size_t(iy) * P + ix] = r(index(site(ix, iy), b));
       fftw_execute_dft_r2c(d.pfwd, d.prbuf, d.pcbuf[b]);
     }
     std::complex<double> in[3], out[3];
@@ -355,10 +372,14 @@ void GreenSolver::precondition(const std::vector<double> &kappa, const Eigen::Ve
       }
     }
     z.resize(r.size());
-    const double norm = 1.0 / (double(L) * L);
+    const double norm = 1.0 / (double(P) * P);
     for (int a = 0; a < nc; ++a) {
       fftw_execute_dft_c2r(d.pbwd, d.pcbuf[a], d.prbuf);
-      for (int i = 0; i < N; ++i) z(index(i, a)) = kappa[i] > 0.0 ? norm * d.prbuf[i] : 0.0;
+      for (int iy = 0; iy < L; ++iy)
+        for (int ix = 0; ix < L; ++ix) {
+          const int i = site(ix, iy);
+          z(index(i, a)) = kappa[i] > 0.0 ? norm * d.prbuf[size_t(iy) * P + ix] : 0.0;
+        }
     }
   }
 }

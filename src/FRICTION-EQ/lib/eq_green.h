@@ -28,9 +28,12 @@
    for the parameters of the paper; the solver checks CG curvature).
 
    Two independent paths:
-     FFT    the lattice operator is a block convolution: zero-padded 2L x 2L
-            r2c FFTs (open array) or the L x L minimum-image kernel
-            (periodic images); preconditioned conjugate gradients,
+     FFT    the lattice operator is a block convolution: zero-padded M x M
+            r2c FFTs, M >= 2L-1 the next size with factors 2,3,5,7 (open
+            array), or the L x L minimum-image kernel (periodic images: the
+            kernel is truncated at the box faces, which distorts the far
+            field along the axes beyond about L/10 when gamma1 is large; use
+            the open array for the kernel); preconditioned conjugate gradients,
             O(N log N) per iteration.  Preconditioner: the circulant
             (Strang) approximation of (*) with kappa = 1 inverted per wave
             vector (exact for a periodic intact lattice), or Jacobi, or none.
