@@ -292,19 +292,47 @@ TEST(GreenKernel, PowerLawsNearAndFar)
 
 TEST(GreenKernel, CrossoverScalesAsOneOverGamma1)
 {
-  // Eq. int.eq30: lambda_c ~ a / gamma1.  The crossover length of the fitted
-  // form A / (r (1 + (r/lambda)^2)) times gamma1 is the same for gamma1 =
-  // 0.1 and 0.2 (open 257 x 257 array, fit for r <= 40, well inside it)
+  // Eq. int.eq30: lambda_c ~ a / gamma1.  The slip kernel fitted with the
+  // continuum crossover shape A psi(r / lambda) gives lambda gamma1 the same
+  // for gamma1 = 0.1 and 0.2 (open 257 x 257 array, r <= 40, well inside
+  // it), between the continuum lengths of the two in-plane modes,
+  // 1 / (2 (1+s) gamma1) and 1 / (2 (1+s)(1-s) gamma1) (s = 0.3: 0.385 and
+  // 0.549 a / gamma1); measured 0.517 and 0.508.
   double lg[2];
   int k = 0;
   for (double g1 : {0.1, 0.2}) {
     GreenSolver s(params(257, g1));
     const Eigen::VectorXd z = green_slip_response(s, s.centre());
     const GreenKernel K = green_axis_kernel(s, z, s.centre(), 40);
-    const CrossoverFit c = fit_crossover(K.r, K.kx, 1, 40);
+    const CrossoverFit c = fit_crossover(K.r, K.kx, 1, 40, 0.1, 1e4, CrossoverShape::CONTINUUM);
+    EXPECT_LT(c.rms, 0.01);    // the continuum shape fits to 1 % (log rms)
     lg[k++] = c.lambda * g1;
   }
-  EXPECT_NEAR(lg[0] / lg[1], 1.0, 0.15);
+  EXPECT_NEAR(lg[0] / lg[1], 1.0, 0.05);
+  for (double l : lg) {
+    EXPECT_GT(l, 1.0 / (2 * 1.3));
+    EXPECT_LT(l, 1.0 / (2 * 1.3 * 0.7));
+  }
+}
+
+TEST(GreenKernel, ContinuumShape)
+{
+  // (pi/2)(H0(1) - Y0(1)) = (pi/2)(0.5686566270 - 0.0882569642)
+  EXPECT_NEAR(continuum_kernel_psi(1.0), (1.0 - 0.5 * PI * 0.4803996628) / (2 * PI), 1e-9);
+  // asymptotes 1/(2 pi rho) and 1/(2 pi rho^3)
+  EXPECT_NEAR(continuum_kernel_psi(1e-4) * 2 * PI * 1e-4, 1.0, 2e-3);
+  EXPECT_NEAR(continuum_kernel_psi(200.0) * 2 * PI * 8e6, 1.0, 1e-3);
+  // the fit recovers lambda from exact data of either shape
+  std::vector<double> r, ya, yc;
+  for (int i = 1; i <= 60; ++i) {
+    r.push_back(i);
+    ya.push_back(2.0 / (i * (1.0 + i * i / 49.0)));
+    yc.push_back(3.0 * continuum_kernel_psi(i / 7.0));
+  }
+  EXPECT_NEAR(fit_crossover(r, ya, 1, 60).lambda, 7.0, 1e-6);
+  const CrossoverFit c = fit_crossover(r, yc, 1, 60, 0.1, 1e4, CrossoverShape::CONTINUUM);
+  EXPECT_NEAR(c.lambda, 7.0, 1e-6);
+  EXPECT_NEAR(c.amplitude, 3.0, 1e-6);
 }
 
 TEST(GreenTable, FormatReadBack)

@@ -191,7 +191,10 @@ int main(int argc, char **argv)
 
     std::vector<double> dfx;
     for (double r : K.r) dfx.push_back(R.df_exact(s.index(s.site(rx + int(r), ry), 0)));
-    const CrossoverFit cf = fit_crossover(K.r, dfx, 1.0, rmax, 0.05, 1e5);
+    // crossover length of the slip kernel along x (proportional to df_x)
+    const CrossoverFit cf = fit_crossover(K.r, K.kx, 1.0, rmax, 0.05, 1e5);
+    const CrossoverFit cc =
+        fit_crossover(K.r, K.kx, 1.0, rmax, 0.05, 1e5, CrossoverShape::CONTINUUM);
 
     std::map<std::string, double> v;
     std::vector<std::string> order;
@@ -233,6 +236,11 @@ int main(int argc, char **argv)
     put("crossover_lambda", cf.lambda);
     put("crossover_lambda_gamma1", cf.lambda * p.gamma1);
     put("crossover_rms", cf.rms);
+    put("crossover_lambda_continuum", cc.lambda);
+    put("crossover_lambda_continuum_gamma1", cc.lambda * p.gamma1);
+    put("crossover_continuum_rms", cc.rms);
+    // near-zone amplitude of the continuum fit: k_x -> kappa_tilde k_c a / r
+    put("kappa_tilde_x_continuum", cc.amplitude * cc.lambda / (2.0 * M_PI));
 
     std::ostringstream txt;
     txt << "eq-green: " << p.L << " x " << p.L << " contacts, " << s.describe() << "\n";
@@ -280,8 +288,14 @@ int main(int argc, char **argv)
         }
     }
     if (!table.empty()) {
-      std::ostringstream cmd;
-      for (const auto &a : args) cmd << " " << a;
+      std::ostringstream cmd;    // the generator command (without output files)
+      for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "summary" || args[i] == "profile" || args[i] == "map") {
+          ++i;
+          continue;
+        }
+        cmd << " " << args[i];
+      }
       std::ostringstream par;
       par << "gamma_1 = " << p.gamma1 << ", gamma_2 = " << p.gamma2 << ", sigma = " << p.sigma
           << ", mismatch = " << p.mismatch << ", L = " << p.L << " ("

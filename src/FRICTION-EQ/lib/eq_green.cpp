@@ -589,8 +589,38 @@ PowerFit fit_power_law(const std::vector<double> &r, const std::vector<double> &
   return f;
 }
 
+double continuum_kernel_psi(double rho)
+{
+  if (!(rho > 0.0)) throw std::invalid_argument("continuum_kernel_psi: rho must be > 0");
+  if (rho >= 25.0) {
+    // asymptotic series (pi/2)(H0 - Y0)(x) = 1/x - 1/x^3 + 9/x^5 - 225/x^7 + ...,
+    // term ratio -((2k+1)/x)^2: at x >= 25 it is converged to round-off
+    double sum = 0.0, term = 1.0 / (rho * rho * rho);
+    for (int k = 1; k < 12; ++k) {
+      sum += term;
+      term *= -double((2 * k + 1) * (2 * k + 1)) / (rho * rho);
+    }
+    return sum / (2.0 * PI);
+  }
+  // (pi/2)(H0 - Y0)(rho) = int_0^inf exp(-rho sinh s) ds: composite 8-point
+  // Gauss-Legendre on panels of width 0.05 up to rho sinh s = 45
+  static const double xg[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
+                               0.9602898564975363};
+  static const double wg[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
+                               0.1012285362903763};
+  const double H = 0.05, smax = std::asinh(45.0 / rho);
+  double I = 0.0;
+  for (double a = 0.0; a < smax; a += H) {
+    const double m = a + 0.5 * H;
+    for (int k = 0; k < 4; ++k)
+      for (int sg = -1; sg <= 1; sg += 2)
+        I += 0.5 * H * wg[k] * std::exp(-rho * std::sinh(m + sg * 0.5 * H * xg[k]));
+  }
+  return (1.0 / rho - I) / (2.0 * PI);
+}
+
 CrossoverFit fit_crossover(const std::vector<double> &r, const std::vector<double> &y, double rmin,
-                           double rmax, double lo, double hi)
+                           double rmax, double lo, double hi, CrossoverShape shape)
 {
   std::vector<double> rr, ly;
   for (size_t i = 0; i < r.size(); ++i)
@@ -602,19 +632,26 @@ CrossoverFit fit_crossover(const std::vector<double> &r, const std::vector<doubl
   best.points = int(rr.size());
   if (rr.size() < 3) return best;
   // for a given lambda the optimal log A is the mean residual
+  // log of the shape function (up to the amplitude) at distance x
+  auto lshape = [&](double x, double lam) {
+    if (shape == CrossoverShape::ALGEBRAIC) return -std::log(x * (1.0 + x * x / (lam * lam)));
+    return std::log(continuum_kernel_psi(x / lam));
+  };
   auto cost = [&](double lam, double *logA) {
+    std::vector<double> d(rr.size());
     double m = 0;
-    for (size_t i = 0; i < rr.size(); ++i)
-      m += ly[i] + std::log(rr[i] * (1.0 + rr[i] * rr[i] / (lam * lam)));
+    for (size_t i = 0; i < rr.size(); ++i) {
+      d[i] = ly[i] - lshape(rr[i], lam);
+      m += d[i];
+    }
     m /= rr.size();
     double e = 0;
-    for (size_t i = 0; i < rr.size(); ++i)
-      e += std::pow(ly[i] + std::log(rr[i] * (1.0 + rr[i] * rr[i] / (lam * lam))) - m, 2);
+    for (size_t i = 0; i < rr.size(); ++i) e += (d[i] - m) * (d[i] - m);
     if (logA) *logA = m;
     return e / rr.size();
   };
   // coarse logarithmic scan, then golden section around the best point
-  const int n = 400;
+  const int n = shape == CrossoverShape::ALGEBRAIC ? 400 : 120;
   double bl = std::log(lo), bc = 1e300;
   for (int k = 0; k <= n; ++k) {
     const double l = std::log(lo) + (std::log(hi) - std::log(lo)) * k / n;

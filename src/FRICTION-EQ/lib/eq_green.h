@@ -180,8 +180,19 @@ struct CrossoverFit {
   double lambda = 0.0, amplitude = 0.0, rms = 0.0;
   int points = 0;
 };
+// shape ALGEBRAIC: y = A / (r (1 + (r/lambda)^2));
+// shape CONTINUUM: y = A psi(r / lambda) with psi the isotropic continuum
+// slip kernel (springs of density k_c / a^2 between half-spaces, G(q) ~ 1/q):
+//   psi(rho) = (1/2pi) int_0^inf J0(p rho) p dp / (1 + p)
+//            = (1/2pi) [1/rho - (pi/2)(H0(rho) - Y0(rho))]   (Struve, Neumann)
+// -> 1/(2 pi rho) for rho << 1 (with logarithmic corrections), 1/(2 pi rho^3)
+// for rho >> 1.  Both shapes have the asymptotes A'/r and A' lambda^2/r^3,
+// which cross at r = lambda.
+enum class CrossoverShape { ALGEBRAIC, CONTINUUM };
 CrossoverFit fit_crossover(const std::vector<double> &r, const std::vector<double> &y, double rmin,
-                           double rmax, double lo = 0.1, double hi = 1e4);
+                           double rmax, double lo = 0.1, double hi = 1e4,
+                           CrossoverShape shape = CrossoverShape::ALGEBRAIC);
+double continuum_kernel_psi(double rho);
 
 // Peak resident memory of this process in bytes (getrusage), 0 if unknown.
 size_t peak_rss_bytes();
