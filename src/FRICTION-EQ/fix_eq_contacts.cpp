@@ -14,8 +14,11 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "force.h"
 #include "group.h"
 #include "memory.h"
+#include "neighbor.h"
+#include "pair_eq_elastic.h"
 #include "respa.h"
 #include "update.h"
 #include "utils.h"
@@ -25,6 +28,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -32,16 +36,19 @@ using namespace FixConst;
 namespace {
 // a contact may break at most this often within one time step
 constexpr int MAX_BREAKS_PER_STEP = 1000;
+// an avalanche (interacting contacts) may take at most this many rounds
+constexpr int MAX_ROUNDS = 100000;
 // sums kept per rank: friction force, breaks in step, attached, energy,
 // sum of stretches, contacts, breaks since the fix was defined
 enum { SUM_FORCE, SUM_BREAKS, SUM_ATTACHED, SUM_ENERGY, SUM_STRETCH, SUM_COUNT, SUM_TOTAL, NSUM };
-const char *KEYWORDS = "threshold, reform, stiffness, dir, crossing, start";
+const char *KEYWORDS = "threshold, reform, stiffness, dir, crossing, start, reform_as, avalanches";
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
 
 FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), state(nullptr)
+    Fix(lmp, narg, arg), reform_force(1), break_tol(0.0), pair(nullptr), avfp(nullptr),
+    av_flag(0), rounds_last(0), rigid_shift(0), nmax_list(0), blist(nullptr), dsv(nullptr), state(nullptr)
 {
   if (narg < 5)
     error->all(FLERR,
@@ -64,6 +71,7 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   stiffness.dist = feq::make_delta(1.0);
   stiffness.text = "constant";
 
+  std::string avfile;
   const std::vector<std::string> args(arg, arg + narg);
   const feq::NumberParser number = EQUtil::number_parser(lmp);
   const feq::FileLoader load = EQUtil::file_loader(lmp);
@@ -100,6 +108,17 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
         if (v == "relaxed") start_reform = 0;
         else if (v == "reform") start_reform = 1;
         else throw feq::SpecError("start: unknown value '" + v + "'; allowed: relaxed, reform");
+      } else if (kw == "reform_as") {
+        if (iarg >= args.size())
+          throw feq::SpecError("reform_as: missing value; allowed: stretch, force");
+        const std::string &v = args[iarg++];
+        if (v == "stretch") reform_force = 0;
+        else if (v == "force") reform_force = 1;
+        else throw feq::SpecError("reform_as: unknown value '" + v + "'; allowed: stretch, force");
+      } else if (kw == "avalanches") {
+        if (iarg >= args.size()) throw feq::SpecError("avalanches: missing file name");
+        avfile = args[iarg++];
+        av_flag = 1;
       } else {
         throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
       }
@@ -145,20 +164,30 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   if (comm->me == 0)
     utils::logmesg(lmp,
                    "fix eq/contacts: {} contacts along {}; thresholds {} (<x_s> = {:.6g}); reform "
-                   "{}; stiffness {} (<k_i> = {:.6g}); crossing {}\n",
+                   "{} (as {}); stiffness {} (<k_i> = {:.6g}); crossing {}\n",
                    ncontacts, "xyz"[idir], threshold.text, threshold.dist->mean(), reform.text,
-                   stiffness.text, kc * stiffness.dist->mean(), exact ? "exact" : "step");
+                   reform_force ? "force" : "stretch", stiffness.text,
+                   kc * stiffness.dist->mean(), exact ? "exact" : "step");
+  if (av_flag && comm->me == 0) {
+    avfp = fopen(avfile.c_str(), "w");
+    if (!avfp)
+      error->one(FLERR, "Fix eq/contacts avalanches: cannot open file {}: {}", avfile,
+                 utils::getsyserror());
+    fmt::print(avfp, "# fix {} eq/contacts avalanches: one line per step with breaks\n"
+                     "# step size trigger rounds\n", id);
+    fflush(avfp);
+  }
 
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
   scalar_flag = 1;
   vector_flag = 1;
-  size_vector = 7;
+  size_vector = 8;
   global_freq = 1;
   extscalar = 1;
   extvector = -1;
-  extlist = new int[size_vector]{1, 1, 1, 1, 1, 0, 1};
+  extlist = new int[size_vector]{1, 1, 1, 1, 1, 0, 1, 0};
   peratom_flag = 1;
   size_peratom_cols = NCOL;
   peratom_freq = 1;
@@ -192,6 +221,9 @@ FixEQContacts::~FixEQContacts()
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(state);
+  memory->destroy(blist);
+  memory->destroy(dsv);
+  if (avfp) fclose(avfp);
   delete[] extlist;
 }
 
@@ -200,6 +232,7 @@ FixEQContacts::~FixEQContacts()
 int FixEQContacts::setmask()
 {
   int mask = 0;
+  mask |= PRE_FORCE;
   mask |= POST_FORCE;
   mask |= POST_FORCE_RESPA;
   mask |= MIN_POST_FORCE;
@@ -214,6 +247,11 @@ void FixEQContacts::init()
     ilevel_respa = ((Respa *) update->integrate)->nlevels - 1;
     if (respa_level >= 0) ilevel_respa = MIN(respa_level, ilevel_respa);
   }
+  // the interaction between contacts, when a pair style provides it
+  pair = force->pair ? dynamic_cast<PairEQElastic *>(force->pair_match("^eq/elastic", 0)) : nullptr;
+  if (pair && utils::strmatch(update->integrate_style, "^respa"))
+    error->all(FLERR, "Fix eq/contacts with pair style eq/elastic does not support run_style "
+                      "respa; allowed: run_style verlet");
 }
 
 /* ----------------------------------------------------------------------
@@ -236,9 +274,22 @@ void FixEQContacts::mark_departed()
   }
 }
 
+void FixEQContacts::setup_pre_force(int /*vflag*/)
+{
+  if (!pair) return;
+  mark_departed();
+  // contacts break during runs only, not during minimization
+  interact_step(update->whichflag == 1);
+}
+
+void FixEQContacts::pre_force(int /*vflag*/)
+{
+  if (pair) interact_step(true);
+}
+
 void FixEQContacts::setup(int vflag)
 {
-  mark_departed();
+  if (!pair) mark_departed();
   if (utils::strmatch(update->integrate_style, "^verlet"))
     post_force(vflag);
   else {
@@ -250,13 +301,28 @@ void FixEQContacts::setup(int vflag)
 
 void FixEQContacts::min_setup(int /*vflag*/)
 {
+  if (pair) {
+    apply_interacting();
+    return;
+  }
   mark_departed();
   apply(false);
 }
 
 void FixEQContacts::post_force(int /*vflag*/)
 {
+  if (pair) {
+    apply_interacting();
+    return;
+  }
   apply(true);
+  if (av_flag) {
+    // avalanches without interaction: the breaks of a step
+    double nb = local_sum[SUM_BREAKS], all = nb;
+    MPI_Allreduce(&nb, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+    rounds_last = all > 0.0 ? 1 : 0;
+    if (all > 0.0) record_avalanche((bigint) all, (bigint) all, 1);
+  }
 }
 
 void FixEQContacts::post_force_respa(int vflag, int ilevel, int /*iloop*/)
@@ -268,7 +334,8 @@ void FixEQContacts::post_force_respa(int vflag, int ilevel, int /*iloop*/)
 // a smooth function of the positions
 void FixEQContacts::min_post_force(int /*vflag*/)
 {
-  apply(false);
+  if (pair) apply_interacting();
+  else apply(false);
 }
 
 /* ----------------------------------------------------------------------
@@ -331,6 +398,7 @@ void FixEQContacts::init_contact(int i)
   s[NBREAK] = (double) event;
   s[STIFFNESS] = k;
   s[ANCHOR] = unwrapped(i) - s0;
+  s[INTERACT] = 0.0;
 }
 
 /* ----------------------------------------------------------------------
@@ -355,7 +423,8 @@ double FixEQContacts::resolve_breaks(int i, double s)
     if (std::fabs(s) > 0.5 * wrap) s -= wrap * std::round(s / wrap);
   }
   int nb = 0;
-  while (!(std::fabs(s) < st[THRESHOLD])) {
+  const double tol = break_tol > 0.0 ? break_tol * (1.0 + std::fabs(st[ANCHOR]) + std::fabs(s)) : 0.0;
+  while (!(std::fabs(s) < st[THRESHOLD] - tol)) {
     if (!std::isfinite(s))
       error->one(FLERR,
                  "Fix eq/contacts: stretch of contact {} is {} (numerical instability: check the "
@@ -436,7 +505,8 @@ void FixEQContacts::apply(bool allow_breaks)
     }
     double s = xu - st[ANCHOR];
     // the force that decides breaking is k_i s: the stretch test is equivalent
-    if (!(std::fabs(s) < th) && allow_breaks) {
+    if (!(std::fabs(s) < th - (break_tol > 0.0 ? break_tol * (1.0 + std::fabs(st[ANCHOR]) + std::fabs(s)) : 0.0))
+        && allow_breaks) {
       s = resolve_breaks(i, s);
       if (st[THRESHOLD] < 0.0) {
         st[STRETCH] = st[FORCE] = 0.0;
@@ -493,6 +563,12 @@ double FixEQContacts::compute_vector(int n)
       return global_sum[SUM_ATTACHED] > 0.0 ? global_sum[SUM_STRETCH] / global_sum[SUM_ATTACHED]
                                             : 0.0;
     case 6: reduce(); return global_sum[SUM_COUNT];
+    case 7:
+      if (!pair && !av_flag) {
+        reduce();
+        return global_sum[SUM_BREAKS] > 0.0 ? 1.0 : 0.0;
+      }
+      return (double) rounds_last;
   }
   return 0.0;
 }
@@ -607,4 +683,233 @@ void *FixEQContacts::extract(const char *name, int &dim)
     return (void *) &idir;
   }
   return nullptr;
+}
+
+/* ======================================================================
+   interacting contacts (pair eq/elastic)
+
+   Each step: stretches from the positions, the field h_i of the pair
+   style, then the avalanche: all contacts whose force k_i x_i + h_i has
+   reached k_i x_si break at once (one round), the field changes by the
+   scattered stretch changes, and rounds repeat until no contact is over
+   its threshold anywhere (cellular-automaton update, independent of the
+   decomposition).  The pair style then applies -h_i from the final state.
+====================================================================== */
+
+inline double FixEQContacts::unwrap_fix(double s) const
+{
+  // see resolve_breaks(): undo a wrap of the image counter
+  if (!domain->triclinic && domain->periodicity[idir]) {
+    const double wrap = 2.0 * IMGMAX * domain->prd[idir];
+    if (std::fabs(s) > 0.5 * wrap) s -= wrap * std::round(s / wrap);
+  }
+  return s;
+}
+
+void FixEQContacts::update_stretches()
+{
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double *const st = state[i];
+    if (st[THRESHOLD] == 0.0) init_contact(i);
+    if (st[THRESHOLD] < 0.0) {
+      st[STRETCH] = st[FORCE] = st[INTERACT] = 0.0;
+      continue;
+    }
+    st[STRETCH] = unwrap_fix(unwrapped(i) - st[ANCHOR]);
+  }
+}
+
+void FixEQContacts::interact_step(bool allow_breaks)
+{
+  update_stretches();
+  // a rigid translation leaves h (and the local order of atoms, unless
+  // they were re-neighbored) unchanged: the field of the last step holds
+  if (!(rigid_shift && neighbor->ago > 0 && update->setupflag == 0)) pair->field();
+  rigid_shift = 0;
+  local_sum[SUM_BREAKS] = 0.0;
+  rounds_last = 0;
+  if (allow_breaks) cascade();
+  pair->set_fresh();
+}
+
+/* ----------------------------------------------------------------------
+   one break of contact i whose effective stretch e = x_i + h_i/k_i has
+   reached its threshold.  exact crossing carries the overshoot e - x_s
+   (the slider's advance past the break) into the new contact.  reform_as
+   stretch: the new spring has stretch r; force: the new contact carries
+   force k_i r, the interaction with its partners included.
+   Returns the new stretch.
+------------------------------------------------------------------------- */
+
+double FixEQContacts::break_once(int i, double e)
+{
+  const tagint tag = atom->tag[i];
+  double *const st = state[i];
+  if (!std::isfinite(e))
+    error->one(FLERR,
+               "Fix eq/contacts: force of contact {} is {} (numerical instability: check the "
+               "timestep, the forces, the integrator and the pair eq/elastic coefficients{})",
+               tag, e * st[STIFFNESS],
+               reform_force ? ""
+                            : "; with reform_as stretch a re-formed contact can carry its "
+                              "partners' force beyond its threshold and break without end: use "
+                              "reform_as force or a smaller ftilde");
+  const double sign = e > 0.0 ? 1.0 : -1.0;
+  const double over = exact ? e - sign * st[THRESHOLD] : 0.0;
+  const double s_old = st[STRETCH];
+  const double h_old = st[INTERACT];
+  const bigint event = (bigint) st[NBREAK] + 1;
+  st[NBREAK] = (double) event;
+  ++local_breaks_total;
+  local_sum[SUM_BREAKS] += 1.0;
+  if (!reform.dist) {    // never re-forms: detached for good
+    st[THRESHOLD] = -1.0;
+    st[STIFFNESS] = 0.0;
+    st[STRETCH] = st[FORCE] = st[INTERACT] = 0.0;
+    return 0.0;
+  }
+  const double r = draw_reform(tag, event, feq::STREAM_REFORM);
+  if (!stiffness_const)
+    st[STIFFNESS] = kc * stiffness.dist->sample(feq::draw(seed, tag, event, feq::STREAM_STIFFNESS));
+  const double th = threshold.dist->sample_above(
+      std::fabs(r), feq::draw(seed, tag, event, feq::STREAM_THRESHOLD));
+  if (!(th > 0.0))
+    error->one(FLERR,
+               "Fix eq/contacts: contact {} re-formed with stretch {}, where no breaking "
+               "threshold of {} lies above it; check the reform distribution",
+               tag, r, threshold.text);
+  st[THRESHOLD] = th;
+  const double target = sign * r + over;    // new force / k_i
+  double s_new = target;
+  if (reform_force) {
+    const double ksum = pair->coupling(i);
+    const double k = st[STIFFNESS];
+    const double m = s_old * ksum - h_old;    // sum_j k_ij x_j
+    s_new = (k * target + m) / (k + ksum);
+  }
+  st[STRETCH] = s_new;
+  st[ANCHOR] += s_old - s_new;
+  return s_new;
+}
+
+void FixEQContacts::cascade()
+{
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  if (nlocal > nmax_list) {
+    nmax_list = atom->nmax;
+    memory->destroy(blist);
+    memory->destroy(dsv);
+    memory->create(blist, nmax_list, "eq/contacts:blist");
+    memory->create(dsv, nmax_list, "eq/contacts:dsv");
+  }
+  bigint size = 0, trigger = 0;
+  int rounds = 0;
+  while (true) {
+    // all contacts over their thresholds at the start of the round
+    int nb = 0;
+    for (int i = 0; i < nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      const double *st = state[i];
+      const double th = st[THRESHOLD];
+      if (th <= 0.0) continue;
+      const double e = st[STRETCH] + st[INTERACT] / st[STIFFNESS];
+      const double tol =
+          break_tol > 0.0 ? break_tol * (1.0 + std::fabs(st[ANCHOR]) + std::fabs(st[STRETCH])) : 0.0;
+      if (!(std::fabs(e) < th - tol)) blist[nb++] = i;
+    }
+    bigint all = nb;
+    if (comm->nprocs > 1) {
+      bigint mine = nb;
+      MPI_Allreduce(&mine, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+    }
+    if (all == 0) break;
+    if (++rounds > MAX_ROUNDS)
+      error->all(FLERR,
+                 "Fix eq/contacts: avalanche did not stop after {} rounds ({} breaks); the "
+                 "interaction is too strong for the contacts (check the pair eq/elastic "
+                 "coefficients against k_i{})", MAX_ROUNDS, size,
+                 reform_force ? "" : "; with reform_as stretch use reform_as force or a smaller ftilde");
+    if (rounds == 1) trigger = all;
+    size += all;
+    for (int m = 0; m < nb; m++) {
+      const int i = blist[m];
+      const double *st = state[i];
+      const double e = st[STRETCH] + st[INTERACT] / st[STIFFNESS];
+      const double s_old = st[STRETCH];
+      dsv[i] = break_once(i, e) - s_old;
+    }
+    if (!reform.dist) pair->field();    // detached contacts leave the interaction
+    else pair->scatter(blist, nb, dsv);
+  }
+  rounds_last = rounds;
+  if (size > 0 && av_flag) record_avalanche(size, trigger, rounds);
+}
+
+void FixEQContacts::record_avalanche(bigint size, bigint trigger, int rounds)
+{
+  if (!avfp) return;
+  fmt::print(avfp, "{} {} {} {}\n", update->ntimestep, size, trigger, rounds);
+}
+
+/* ----------------------------------------------------------------------
+   spring forces -k_i x_i of the current state (interacting path: the
+   stretches were set in pre_force, or by the pair style's own update)
+------------------------------------------------------------------------- */
+
+void FixEQContacts::apply_interacting()
+{
+  double *const *const f = atom->f;
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int d = idir;
+  double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = 0.0;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double *const st = state[i];
+    ncount += 1.0;
+    if (st[THRESHOLD] <= 0.0) continue;
+    const double s = st[STRETCH];
+    const double fc = st[STIFFNESS] * s;
+    st[FORCE] = fc;
+    f[i][d] -= fc;
+    fsum += fc;
+    esum += fc * s;
+    ssum += s;
+    natt += 1.0;
+  }
+  local_sum[SUM_FORCE] = fsum;
+  local_sum[SUM_ATTACHED] = natt;
+  local_sum[SUM_ENERGY] = 0.5 * esum;
+  local_sum[SUM_STRETCH] = ssum;
+  local_sum[SUM_COUNT] = ncount;
+  local_sum[SUM_TOTAL] = (double) local_breaks_total;
+  reduced_valid = 0;
+}
+
+/* ----------------------------------------------------------------------
+   distance the slider (moving along +dir) has to advance until the first
+   contact reaches its threshold: x_si - (x_i + h_i/k_i), minimum over all
+   contacts and ranks.  A uniform advance leaves h_i unchanged.
+------------------------------------------------------------------------- */
+
+double FixEQContacts::next_event()
+{
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  double dmin = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double *st = state[i];
+    if (st[THRESHOLD] <= 0.0) continue;
+    const double e = st[STRETCH] + st[INTERACT] / st[STIFFNESS];
+    const double d = st[THRESHOLD] - e;
+    if (d < dmin) dmin = d;
+  }
+  double all = dmin;
+  MPI_Allreduce(&dmin, &all, 1, MPI_DOUBLE, MPI_MIN, world);
+  return all > 0.0 ? all : 0.0;
 }

@@ -32,6 +32,8 @@ class FixEQContacts : public Fix {
   int setmask() override;
   void init() override;
   void setup(int) override;
+  void setup_pre_force(int) override;
+  void pre_force(int) override;
   void min_setup(int) override;
   void post_force(int) override;
   void post_force_respa(int, int, int) override;
@@ -54,8 +56,21 @@ class FixEQContacts : public Fix {
   int maxsize_restart() override;
   void *extract(const char *, int &) override;
 
-  // columns of the per-atom state (also the per-atom output array)
-  enum { STRETCH, THRESHOLD, FORCE, NBREAK, STIFFNESS, ANCHOR, NCOL };
+  // columns of the per-atom state (also the per-atom output array);
+  // INTERACT is the interaction force h_i of pair eq/elastic (0 without)
+  enum { STRETCH, THRESHOLD, FORCE, NBREAK, STIFFNESS, ANCHOR, INTERACT, NCOL };
+
+  // --- for pair eq/elastic and fix eq/quasistatic ---
+  // stretches of all local contacts from the current positions (no breaks)
+  void update_stretches();
+  // slider advance (along +dir) that brings the first contact to its
+  // threshold; global minimum over all ranks (infinite: no contact)
+  double next_event();
+  // relative tolerance of the breaking test (quasi-static driving)
+  void set_break_tolerance(double tol) { break_tol = tol; }
+  // all contacts were translated rigidly along dir since the last step:
+  // the interaction field is unchanged (fix eq/quasistatic)
+  void note_rigid_shift() { rigid_shift = 1; }
 
  private:
   double kc;
@@ -64,6 +79,16 @@ class FixEQContacts : public Fix {
   int exact;         // 1: threshold crossing resolved exactly within a step
   int start_reform;  // 1: initial stretch drawn from R, else 0
   int ilevel_respa;
+  int reform_force;       // 1: a re-formed contact carries force k_i r (interaction included)
+  double break_tol;       // relative tolerance of the breaking test
+  class PairEQElastic *pair;    // the interaction, or nullptr
+  FILE *avfp;             // avalanche records (rank 0), or nullptr
+  int av_flag;            // avalanche records requested
+  int rounds_last;        // generations of the last step's avalanche
+  int rigid_shift;        // see note_rigid_shift()
+  int nmax_list;
+  int *blist;             // contacts breaking in an avalanche round
+  double *dsv;            // their stretch changes
 
   feq::DistributionSpec threshold, reform, stiffness;
   bool reform_point, stiffness_const;
@@ -86,6 +111,12 @@ class FixEQContacts : public Fix {
   double draw_reform(tagint tag, bigint event, uint32_t stream);
   double resolve_breaks(int i, double s);
   void reduce();
+  void interact_step(bool allow_breaks);
+  void cascade();
+  double break_once(int i, double e);
+  void apply_interacting();
+  void record_avalanche(bigint size, bigint trigger, int rounds);
+  inline double unwrap_fix(double s) const;
   double unwrapped(int i) const;
 };
 

@@ -1,0 +1,136 @@
+#!/usr/bin/python3
+"""Benchmarks of interacting contacts (pair eq/elastic, issue 3).
+
+1. Pair cost per contact-step against pair lj/cut at the same cutoff
+   (same neighbours), measured in one LAMMPS run (in.bench-pair), for a
+   few N on 1 and 2 ranks.  The eq/elastic cost includes the field the
+   fix computes for the breaking test (pre_force) and the forces.
+2. Run time against error: F(X) of a rigid slider (N = 4080, kappa = 0.03,
+   lambda_c = 3) driven by fixed steps dX, against the quasi-static run
+   (fix eq/quasistatic) of the same contacts, which has no step error.
+
+  ./bench_interact.py               both tables
+  ./bench_interact.py --part pair   only the first
+"""
+import argparse
+import re
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parents[1] / "tools"))
+import numpy as np  # noqa: E402
+
+import eqtools  # noqa: E402
+
+SECTIONS = ("Pair", "Neigh", "Comm", "Modify")
+
+
+def parse_runs(log):
+    out = {}
+    parts = log.split("BENCH ")[1:]
+    for p in parts:
+        name = p.split()[0]
+        loop = float(re.search(r"Loop time of ([0-9.eE+-]+)", p).group(1))
+        steps = int(re.search(r"for (\d+) steps with (\d+) atoms", p).group(1))
+        natoms = int(re.search(r"for \d+ steps with (\d+) atoms", p).group(1))
+        t = {}
+        for sec in SECTIONS:
+            m = re.search(r"^%s\s*\|([^|]*)\|\s*([0-9.eE+-]+)" % sec, p, re.M)
+            t[sec] = float(m.group(2)) if m else 0.0
+        nb = re.search(r"Ave neighs/atom = ([0-9.]+)", p)
+        out[name] = {"loop": loop, "steps": steps, "natoms": natoms, "t": t,
+                     "neigh": float(nb.group(1)) if nb else 0.0}
+    return out
+
+
+def pair_table(sizes, ranks, steps, out):
+    print("pair eq/elastic vs lj/cut, rcut = 3 (36 lattice neighbours), ns per contact-step")
+    print(f"{'N':>7} {'ranks':>5} {'no pair':>8} {'lj/cut':>8} {'eq/elastic':>10} "
+          f"{'lj pair':>8} {'eq pair':>8} {'ratio':>6}  neighbours/atom (lj half, eq full)")
+    for n in sizes:
+        ny = max(1, int(round((n / 4.0) ** 0.5)))
+        nx = 2 * ny
+        for r in ranks:
+            best = None
+            for _ in range(2):
+                log = eqtools.run_lammps(HERE / "in.bench-pair",
+                                         {"nx": nx, "ny": ny, "steps": steps}, nprocs=r, cwd=out)
+                res = parse_runs(log)
+                if best is None or res["eq/elastic"]["loop"] < best["eq/elastic"]["loop"]:
+                    best = res
+            N = best["none"]["natoms"]
+            ns = {k: 1e9 * v["loop"] / (v["steps"] * N) for k, v in best.items()}
+            lj = ns["lj/cut"] - ns["none"]
+            eq = ns["eq/elastic"] - ns["none"]
+            print(f"{N:>7} {r:>5} {ns['none']:>8.1f} {ns['lj/cut']:>8.1f} {ns['eq/elastic']:>10.1f} "
+                  f"{lj:>8.1f} {eq:>8.1f} {eq / lj:>6.2f}  {best['lj/cut']['neigh']:.0f}, "
+                  f"{best['eq/elastic']['neigh']:.0f}")
+
+
+def f_on_grid(d, grid, qs):
+    X, F, att = d[:, 1], d[:, 2], d[:, 3]
+    if not qs:
+        return np.interp(grid, X, F)
+    i = np.searchsorted(X, grid, side="right") - 1
+    return F[i] + (grid - X[i]) * att[i] / 4080.0
+
+
+def accuracy_table(kappa, xmax, out):
+    inp = ROOT / "unittest" / "python" / "inputs" / "in.quasistatic"
+    fine = np.arange(0.001, xmax - 0.04, 0.001)
+
+    def run(tag, **v):
+        d = Path(out) / tag
+        d.mkdir(parents=True, exist_ok=True)
+        t0 = time.perf_counter()
+        eqtools.run_lammps(inp, dict(v, nx=60, ny=34, kappa=kappa, Xmax=xmax, out=d), cwd=d)
+        return time.perf_counter() - t0, eqtools.load(d / "F.dat")
+
+    print(f"\nrun time vs error, N = 4080, kappa = {kappa}, lambda_c = 3, X in [0, {xmax}]; "
+          f"errors of F/(N k_c) against the quasi-static run: at the step ends, and of F(X) "
+          f"on a 0.001 grid (linear between step ends)")
+    print(f"{'reform_as':>9} {'drive':>12} {'steps':>6} {'time s':>7} {'step ends':>10} "
+          f"{'grid rms':>9} {'grid max':>9} {'breaks/step':>11}")
+    for rmode in ("force", "stretch"):
+        tq, dq = run(f"qs_{rmode}", drive="qs", dX=0.05, rmode=rmode)
+        ref = f_on_grid(dq, fine, True)
+        b = dq[:, 4]
+        print(f"{rmode:>9} {'quasistatic':>12} {len(dq):>6} {tq:>7.2f} {0.0:>10.1e} {0.0:>9.1e} "
+              f"{0.0:>9.1e} {b[b > 0].mean():>11.2f}")
+        for dX in (0.04, 0.01, 0.004, 0.001):
+            t, d = run(f"step{dX}_{rmode}", drive="step", dX=dX, rmode=rmode)
+            m = d[:, 1] > 0
+            ends = np.max(np.abs(f_on_grid(dq, d[m, 1], True) - d[m, 2]))
+            e = np.interp(fine, d[:, 1], d[:, 2]) - ref
+            b = d[:, 4]
+            print(f"{rmode:>9} {'step %g' % dX:>12} {len(d):>6} {t:>7.2f} {ends:>10.1e} "
+                  f"{np.sqrt(np.mean(e * e)):>9.1e} {np.max(np.abs(e)):>9.1e} "
+                  f"{b[b > 0].mean():>11.2f}")
+
+
+ROOT = HERE.parents[1]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--part", choices=["pair", "accuracy", "all"], default="all")
+    ap.add_argument("--sizes", default="4080,16320,65280")
+    ap.add_argument("--ranks", default="1,2")
+    ap.add_argument("--steps", type=int, default=400)
+    ap.add_argument("--kappa", type=float, default=0.03)
+    ap.add_argument("--xmax", type=float, default=2.5)
+    ap.add_argument("--out", default=str(HERE / "out"))
+    a = ap.parse_args()
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    if a.part in ("pair", "all"):
+        pair_table([int(v) for v in a.sizes.split(",")], [int(v) for v in a.ranks.split(",")],
+                   a.steps, out)
+    if a.part in ("accuracy", "all"):
+        accuracy_table(a.kappa, a.xmax, out)
+
+
+if __name__ == "__main__":
+    main()

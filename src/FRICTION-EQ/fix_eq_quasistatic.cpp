@@ -1,0 +1,156 @@
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: fix eq/quasistatic (see the header)
+------------------------------------------------------------------------- */
+
+#include "fix_eq_quasistatic.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_eq_contacts.h"
+#include "group.h"
+#include "modify.h"
+#include "update.h"
+#include "utils.h"
+
+#include <cmath>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace {
+// relative tolerance of the breaking test while driving quasi-statically:
+// the contact that sets the advance reaches its threshold up to rounding
+constexpr double QS_TOLERANCE = 1.0e-13;
+}    // namespace
+
+FixEQQuasistatic::FixEQQuasistatic(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), contacts(nullptr), dxmax(0.0), xtotal(0.0), dx_last(0.0), idir(0),
+    covers_contacts(0)
+{
+  if (group->dynamic[igroup])
+    error->all(FLERR, "Fix eq/quasistatic: group {} is dynamic; allowed: a static group",
+               group->names[igroup]);
+  if (narg < 4)
+    error->all(FLERR, "Illegal fix eq/quasistatic command: expected 'fix ID group eq/quasistatic "
+                      "contacts-ID [max dX]'");
+  contacts_id = arg[3];
+  int iarg = 4;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "max") == 0) {
+      if (iarg + 1 >= narg) error->all(FLERR, "Fix eq/quasistatic max: missing value (a distance > 0)");
+      dxmax = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(dxmax > 0.0))
+        error->all(FLERR, "Fix eq/quasistatic max: value must be > 0 (got {})", arg[iarg + 1]);
+      iarg += 2;
+    } else
+      error->all(FLERR, "Fix eq/quasistatic: unknown keyword '{}'; allowed: max", arg[iarg]);
+  }
+
+  scalar_flag = 1;
+  vector_flag = 1;
+  size_vector = 2;
+  global_freq = 1;
+  extscalar = 0;
+  extvector = 0;
+  time_integrate = 1;
+  restart_global = 1;
+}
+
+FixEQQuasistatic::~FixEQQuasistatic()
+{
+  release();
+}
+
+// the contacts return to the plain breaking test when this fix goes away
+void FixEQQuasistatic::release()
+{
+  const int ifix = modify->find_fix(contacts_id);
+  if (ifix >= 0 && contacts && modify->fix[ifix] == contacts) contacts->set_break_tolerance(0.0);
+}
+
+int FixEQQuasistatic::setmask()
+{
+  return INITIAL_INTEGRATE;
+}
+
+void FixEQQuasistatic::init()
+{
+  const int ifix = modify->find_fix(contacts_id);
+  if (ifix < 0)
+    error->all(FLERR, "Fix eq/quasistatic: fix ID {} does not exist; expected the ID of a fix "
+                      "eq/contacts", contacts_id);
+  contacts = dynamic_cast<FixEQContacts *>(modify->fix[ifix]);
+  if (!contacts)
+    error->all(FLERR, "Fix eq/quasistatic: fix {} is a fix {}, not eq/contacts", contacts_id,
+               modify->fix[ifix]->style);
+  int dim;
+  idir = *(int *) contacts->extract("dir", dim);
+  contacts->set_break_tolerance(QS_TOLERANCE);
+
+  // does the group move all contacts (then their interaction field only
+  // changes by breaks)?
+  const int *mask = atom->mask;
+  int missing = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((mask[i] & contacts->groupbit) && !(mask[i] & groupbit)) missing = 1;
+  int any = 0;
+  MPI_Allreduce(&missing, &any, 1, MPI_INT, MPI_MAX, world);
+  covers_contacts = any ? 0 : 1;
+  if (!utils::strmatch(update->integrate_style, "^verlet"))
+    error->all(FLERR, "Fix eq/quasistatic requires run_style verlet");
+}
+
+/* ----------------------------------------------------------------------
+   advance to the next event (the state is that after the last step's
+   breaks and avalanches)
+------------------------------------------------------------------------- */
+
+void FixEQQuasistatic::initial_integrate(int /*vflag*/)
+{
+  double dx = contacts->next_event();
+  if (!std::isfinite(dx)) {
+    if (dxmax > 0.0) dx = dxmax;
+    else
+      error->all(FLERR, "Fix eq/quasistatic: no attached contact left in fix {}; nothing can "
+                        "break (use the max keyword to keep driving)", contacts_id);
+  }
+  if (dxmax > 0.0 && dx > dxmax) dx = dxmax;
+  double **x = atom->x;
+  double **v = atom->v;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int d = idir;
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit) {
+      x[i][d] += dx;
+      v[i][0] = v[i][1] = v[i][2] = 0.0;
+    }
+  xtotal += dx;
+  dx_last = dx;
+  if (covers_contacts) contacts->note_rigid_shift();
+}
+
+double FixEQQuasistatic::compute_scalar()
+{
+  return xtotal;
+}
+
+double FixEQQuasistatic::compute_vector(int n)
+{
+  return n == 0 ? xtotal : dx_last;
+}
+
+void FixEQQuasistatic::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    int size = sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(&xtotal, sizeof(double), 1, fp);
+  }
+}
+
+void FixEQQuasistatic::restart(char *buf)
+{
+  xtotal = ((double *) buf)[0];
+}

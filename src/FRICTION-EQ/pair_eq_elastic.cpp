@@ -1,0 +1,619 @@
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: pair_style eq/elastic
+
+   Elastic interaction between contacts (Braun, Peyrard, Stryzheus,
+   Tosatti, Secs. III-IV).  The contacts and their stretches belong to fix
+   eq/contacts; this style evaluates the interaction field
+   h_i = sum_j k_ij (x_i - x_j), its forces -h_i along the sliding
+   direction, energy and virial.  The kernel k(r) is a LAMMPS-free unit
+   (lib/eq_kernel.h).  A full neighbor list gives every contact all its
+   partners, so the field of a contact is complete on its owner rank and
+   changes after breaks are scattered with one reverse communication.
+------------------------------------------------------------------------- */
+
+#include "pair_eq_elastic.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_eq_contacts.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neigh_request.h"
+#include "neighbor.h"
+#include "update.h"
+#include "utils.h"
+
+#include "eq_distribution.h"
+#include "eq_lammps_util.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+using namespace LAMMPS_NS;
+
+namespace {
+constexpr double NOT_A_CONTACT = std::numeric_limits<double>::quiet_NaN();
+// distances within this relative margin of the cutoff count as inside, so
+// a lattice shell at exactly rcut = lambda_c is included
+constexpr double CUT_MARGIN = 1.0e-12;
+enum { COMM_STRETCH = 1 };
+const char *USAGE = "expected 'pair_coeff I J ftilde lambda_c [rcut]' or "
+                    "'pair_coeff I J table FILE KEYWORD [rcut]'";
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+PairEQElastic::PairEQElastic(LAMMPS *lmp) :
+    Pair(lmp), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr), lambda(nullptr), kidx(nullptr),
+    anisotropic(0), fix(nullptr), idir(0), fresh(0), comm_mode(0), nmax(0), sx(nullptr),
+    dh(nullptr), ksum(nullptr), ghosts_current(0)
+{
+  single_enable = 1;
+  single_extra = 2;
+  svector = new double[single_extra];
+  restartinfo = 1;
+  writedata = 0;
+  one_coeff = 0;
+  manybody_flag = 0;
+  no_virial_fdotr_compute = 1;    // forces on local atoms only (full list)
+  comm_forward = 1;
+  comm_reverse = 1;
+  cut_global = 0.0;
+}
+
+PairEQElastic::~PairEQElastic()
+{
+  delete[] svector;
+  memory->destroy(sx);
+  memory->destroy(dh);
+  memory->destroy(ksum);
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(cut);
+    memory->destroy(cutsq_in);
+    memory->destroy(ftilde);
+    memory->destroy(lambda);
+    memory->destroy(kidx);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairEQElastic::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes;
+  memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
+  memory->create(cut, n + 1, n + 1, "pair:cut");
+  memory->create(cutsq_in, n + 1, n + 1, "pair:cutsq_in");
+  memory->create(ftilde, n + 1, n + 1, "pair:ftilde");
+  memory->create(lambda, n + 1, n + 1, "pair:lambda");
+  memory->create(kidx, n + 1, n + 1, "pair:kidx");
+  for (int i = 0; i <= n; i++)
+    for (int j = 0; j <= n; j++) {
+      setflag[i][j] = 0;
+      cut[i][j] = cutsq_in[i][j] = ftilde[i][j] = lambda[i][j] = 0.0;
+      kidx[i][j] = -1;
+    }
+}
+
+void PairEQElastic::grow()
+{
+  if (atom->nmax <= nmax) return;
+  nmax = atom->nmax;
+  memory->destroy(sx);
+  memory->destroy(dh);
+  memory->destroy(ksum);
+  memory->create(sx, nmax, "pair:sx");
+  memory->create(dh, nmax, "pair:dh");
+  memory->create(ksum, nmax, "pair:ksum");
+  ghosts_current = 0;
+}
+
+/* ----------------------------------------------------------------------
+   pair_style eq/elastic rcut
+------------------------------------------------------------------------- */
+
+void PairEQElastic::settings(int narg, char **arg)
+{
+  if (narg != 1)
+    error->all(FLERR, "Illegal pair_style eq/elastic command: expected 'pair_style eq/elastic rcut'");
+  cut_global = utils::numeric(FLERR, arg[0], false, lmp);
+  if (!(cut_global > 0.0))
+    error->all(FLERR, "Pair style eq/elastic: rcut must be > 0 (got {})", arg[0]);
+
+  // reset explicit cutoffs that were set from the previous global cutoff
+  if (allocated) {
+    for (int i = 1; i <= atom->ntypes; i++)
+      for (int j = i; j <= atom->ntypes; j++)
+        if (setflag[i][j]) cut[i][j] = cut_global;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J ftilde lambda_c [rcut]
+   pair_coeff I J table FILE KEYWORD [rcut]
+------------------------------------------------------------------------- */
+
+void PairEQElastic::coeff(int narg, char **arg)
+{
+  if (narg < 3) error->all(FLERR, "Incorrect args for pair eq/elastic coefficients: {}", USAGE);
+  if (!allocated) allocate();
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+
+  feq::Kernel kern;
+  double cut_one = cut_global;
+  int next;
+  try {
+    if (strcmp(arg[2], "table") == 0) {
+      if (narg < 5 || narg > 6)
+        throw feq::SpecError("table: wrong number of values; " + std::string(USAGE));
+      const std::string text = EQUtil::file_loader(lmp)(arg[3]);
+      kern = feq::read_kernel_table(text, arg[3], arg[4]);
+      next = 5;
+    } else {
+      if (narg < 4 || narg > 5) throw feq::SpecError(std::string("wrong number of values; ") + USAGE);
+      const auto number = EQUtil::number_parser(lmp);
+      double f, l;
+      try {
+        f = number(arg[2]);
+      } catch (const feq::SpecError &) {
+        throw feq::SpecError(std::string("ftilde '") + arg[2] +
+                             "' is not a number; allowed: a number >= 0 or the word 'table'");
+      }
+      try {
+        l = number(arg[3]);
+      } catch (const feq::SpecError &) {
+        throw feq::SpecError(std::string("lambda_c '") + arg[3] + "' is not a number > 0");
+      }
+      kern = feq::make_crossover(f, l);
+      next = 4;
+    }
+    if (narg > next) {
+      cut_one = utils::numeric(FLERR, arg[next], false, lmp);
+      if (!(cut_one > 0.0)) throw feq::SpecError(std::string("rcut must be > 0 (got ") + arg[next] + ")");
+    }
+  } catch (const feq::SpecError &e) {
+    error->all(FLERR, "Pair eq/elastic coefficients for {} {}: {}", arg[0], arg[1], e.what());
+  }
+
+  kernels.push_back(kern);
+  const int k = (int) kernels.size() - 1;
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++) {
+    for (int j = MAX(jlo, i); j <= jhi; j++) {
+      kidx[i][j] = k;
+      ftilde[i][j] = kern.ftilde;
+      lambda[i][j] = kern.lambda;
+      cut[i][j] = cut_one;
+      setflag[i][j] = 1;
+      count++;
+    }
+  }
+  if (count == 0) error->all(FLERR, "Incorrect args for pair eq/elastic coefficients: no type pair in {} {}", arg[0], arg[1]);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairEQElastic::init_style()
+{
+  if (!atom->tag_enable) error->all(FLERR, "Pair style eq/elastic requires atom IDs");
+
+  // exactly one fix eq/contacts holds the contacts
+  fix = nullptr;
+  int nfound = 0;
+  for (int i = 0; i < modify->nfix; i++)
+    if (utils::strmatch(modify->fix[i]->style, "^eq/contacts$")) {
+      fix = dynamic_cast<FixEQContacts *>(modify->fix[i]);
+      ++nfound;
+    }
+  if (nfound == 0)
+    error->all(FLERR, "Pair style eq/elastic needs a fix eq/contacts (the contacts and their "
+                      "stretches); define it before the run");
+  if (nfound > 1)
+    error->all(FLERR, "Pair style eq/elastic found {} fixes eq/contacts; allowed: exactly one",
+               nfound);
+  int dim;
+  idir = *(int *) fix->extract("dir", dim);
+
+  anisotropic = 0;
+  for (const auto &k : kernels)
+    if (k.anisotropic()) anisotropic = 1;
+
+  int irequest = neighbor->request(this, instance_me);
+  neighbor->requests[irequest]->half = 0;
+  neighbor->requests[irequest]->full = 1;
+  fresh = 0;
+}
+
+/* ----------------------------------------------------------------------
+   mixing for crossover kernels: ftilde geometric (or as pair_modify mix),
+   lambda_c and rcut as distances; tables are not mixed
+------------------------------------------------------------------------- */
+
+double PairEQElastic::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0) {
+    if (kidx[i][i] < 0 || kidx[j][j] < 0)
+      error->all(FLERR, "Pair eq/elastic: coefficients for type pair {} {} are not set and cannot "
+                        "be mixed (set pair_coeff {} {} or both {} {} and {} {})",
+                 i, j, i, j, i, i, j, j);
+    const feq::Kernel &ki = kernels[kidx[i][i]], &kj = kernels[kidx[j][j]];
+    if (ki.kind != feq::Kernel::CROSSOVER || kj.kind != feq::Kernel::CROSSOVER)
+      error->all(FLERR, "Pair eq/elastic: type pair {} {} would mix a table kernel; set "
+                        "pair_coeff {} {} explicitly (tables are not mixed)", i, j, i, j);
+    const double f = mix_energy(ki.ftilde, kj.ftilde, ki.lambda, kj.lambda);
+    const double l = mix_distance(ki.lambda, kj.lambda);
+    kernels.push_back(feq::make_crossover(f, l));
+    kidx[i][j] = (int) kernels.size() - 1;
+    ftilde[i][j] = f;
+    lambda[i][j] = l;
+    cut[i][j] = mix_distance(cut[i][i], cut[j][j]);
+  }
+  const feq::Kernel &k = kernels[kidx[i][j]];
+  if (k.kind == feq::Kernel::TABLE && cut[i][j] > k.range() * (1.0 + CUT_MARGIN) && comm->me == 0 &&
+      i == j)
+    error->warning(FLERR, "Pair eq/elastic: rcut {} of type pair {} {} beyond the table's last r "
+                          "{}: k = 0 there", cut[i][j], i, j, k.range());
+  kidx[j][i] = kidx[i][j];
+  ftilde[j][i] = ftilde[i][j];
+  lambda[j][i] = lambda[i][j];
+  cut[j][i] = cut[i][j];
+  const double c = cut[i][j] * (1.0 + CUT_MARGIN);
+  cutsq_in[i][j] = cutsq_in[j][i] = c * c;
+  return c;
+}
+
+/* ----------------------------------------------------------------------
+   k_ij of a pair at squared distance rsq, del = x_i - x_j
+------------------------------------------------------------------------- */
+
+inline double PairEQElastic::kval(int itype, int jtype, double rsq, const double *del) const
+{
+  const feq::Kernel &k = kernels[kidx[itype][jtype]];
+  const double r = sqrt(rsq);
+  if (!anisotropic || !k.anisotropic()) return k.eval(r);
+  const double c2 = 2.0 * del[idir] * del[idir] / rsq - 1.0;
+  return k.eval(r, c2);
+}
+
+/* ----------------------------------------------------------------------
+   stretches of local contacts from the fix, then to the ghosts
+------------------------------------------------------------------------- */
+
+void PairEQElastic::load_stretches()
+{
+  int dim;
+  double **st = (double **) fix->extract("state", dim);
+  const int *mask = atom->mask;
+  const int groupbit = fix->groupbit;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++)
+    sx[i] = ((mask[i] & groupbit) && st[i][FixEQContacts::THRESHOLD] > 0.0)
+        ? st[i][FixEQContacts::STRETCH]
+        : NOT_A_CONTACT;
+  comm_mode = COMM_STRETCH;
+  comm->forward_comm_pair(this);
+  ghosts_current = 1;
+}
+
+/* ----------------------------------------------------------------------
+   field h_i and coupling K_i = sum_j k_ij of all local contacts
+------------------------------------------------------------------------- */
+
+void PairEQElastic::field()
+{
+  grow();
+  load_stretches();
+  int dim;
+  double **st = (double **) fix->extract("state", dim);
+  double **x = atom->x;
+  const int *type = atom->type;
+  const double *special_lj = force->special_lj;
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double si = sx[i];
+    if (std::isnan(si)) {
+      ksum[i] = 0.0;
+      st[i][FixEQContacts::INTERACT] = 0.0;
+      continue;
+    }
+    const int itype = type[i];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    double hi = 0.0, ki = 0.0;
+    for (int jj = 0; jj < jnum; jj++) {
+      int j = jlist[jj];
+      const double factor = special_lj[sbmask(j)];
+      j &= NEIGHMASK;
+      const double sj = sx[j];
+      if (std::isnan(sj)) continue;
+      const int jtype = type[j];
+      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+      if (rsq > cutsq_in[itype][jtype]) continue;
+      const double k = factor * kval(itype, jtype, rsq, del);
+      ki += k;
+      hi += k * (si - sj);
+    }
+    ksum[i] = ki;
+    st[i][FixEQContacts::INTERACT] = hi;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   contacts list[0..n) changed their stretches by ds: h_i += K_i ds_i and
+   h_j -= k_ij ds_i for all partners j (ghost shares returned to owners)
+------------------------------------------------------------------------- */
+
+void PairEQElastic::scatter(const int *clist, int n, const double *ds)
+{
+  int dim;
+  double **st = (double **) fix->extract("state", dim);
+  double **x = atom->x;
+  const int *type = atom->type;
+  const double *special_lj = force->special_lj;
+  const int nall = atom->nlocal + atom->nghost;
+  const int nlocal = atom->nlocal;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+
+  for (int i = 0; i < nall; i++) dh[i] = 0.0;
+  for (int m = 0; m < n; m++) {
+    const int i = clist[m];
+    const double d = ds[i];
+    dh[i] += ksum[i] * d;
+    const int itype = type[i];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      int j = jlist[jj];
+      const double factor = special_lj[sbmask(j)];
+      j &= NEIGHMASK;
+      if (std::isnan(sx[j])) continue;
+      const int jtype = type[j];
+      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+      if (rsq > cutsq_in[itype][jtype]) continue;
+      dh[j] -= factor * kval(itype, jtype, rsq, del) * d;
+    }
+  }
+  comm->reverse_comm_pair(this);
+  for (int i = 0; i < nlocal; i++)
+    if (!std::isnan(sx[i])) st[i][FixEQContacts::INTERACT] += dh[i];
+  ghosts_current = 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairEQElastic::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  grow();
+  if (!fresh) {
+    // not prepared by the fix this step (run 0, minimization, rerun):
+    // stretches from the current positions, no breaking
+    fix->update_stretches();
+    field();
+  }
+  fresh = 0;
+
+  int dim;
+  double **st = (double **) fix->extract("state", dim);
+  double **f = atom->f;
+  const int nlocal = atom->nlocal;
+  const int d = idir;
+  for (int i = 0; i < nlocal; i++)
+    if (!std::isnan(sx[i])) f[i][d] -= st[i][FixEQContacts::INTERACT];
+
+  if (!evflag) return;
+
+  // energy and virial: one more pass, only on steps that need them
+  if (!ghosts_current) load_stretches();
+  double **x = atom->x;
+  const int *type = atom->type;
+  const double *special_lj = force->special_lj;
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  double fv[3] = {0.0, 0.0, 0.0};
+
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double si = sx[i];
+    if (std::isnan(si)) continue;
+    const int itype = type[i];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      int j = jlist[jj];
+      const double factor = special_lj[sbmask(j)];
+      j &= NEIGHMASK;
+      const double sj = sx[j];
+      if (std::isnan(sj)) continue;
+      const int jtype = type[j];
+      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+      if (rsq > cutsq_in[itype][jtype]) continue;
+      const double k = factor * kval(itype, jtype, rsq, del);
+      const double ds = si - sj;
+      fv[d] = -k * ds;
+      ev_tally_xyz_full(i, 0.5 * k * ds * ds, 0.0, fv[0], fv[1], fv[2], del[0], del[1], del[2]);
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   energy of one pair; the force is not central (it acts along the sliding
+   direction), so fforce = 0 and svector = {k_ij, force on i along dir}
+------------------------------------------------------------------------- */
+
+double PairEQElastic::single(int i, int j, int itype, int jtype, double rsq,
+                             double /*factor_coul*/, double factor_lj, double &fforce)
+{
+  fforce = 0.0;
+  svector[0] = svector[1] = 0.0;
+  if (!fix || !sx || i >= nmax || j >= nmax) return 0.0;
+  if (std::isnan(sx[i]) || std::isnan(sx[j])) return 0.0;
+  if (rsq > cutsq_in[itype][jtype]) return 0.0;
+  double **x = atom->x;
+  const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+  const double k = factor_lj * kval(itype, jtype, rsq, del);
+  const double ds = sx[i] - sx[j];
+  svector[0] = k;
+  svector[1] = -k * ds;
+  return 0.5 * k * ds * ds;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void *PairEQElastic::extract(const char *str, int &dim)
+{
+  dim = 2;
+  if (strcmp(str, "ftilde") == 0) return (void *) ftilde;
+  if (strcmp(str, "lambda_c") == 0) return (void *) lambda;
+  if (strcmp(str, "cut") == 0) return (void *) cut;
+  return nullptr;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int PairEQElastic::pack_forward_comm(int n, int *list_, double *buf, int /*pbc_flag*/, int * /*pbc*/)
+{
+  for (int i = 0; i < n; i++) buf[i] = sx[list_[i]];
+  return n;
+}
+
+void PairEQElastic::unpack_forward_comm(int n, int first, double *buf)
+{
+  for (int i = 0; i < n; i++) sx[first + i] = buf[i];
+}
+
+int PairEQElastic::pack_reverse_comm(int n, int first, double *buf)
+{
+  for (int i = 0; i < n; i++) buf[i] = dh[first + i];
+  return n;
+}
+
+void PairEQElastic::unpack_reverse_comm(int n, int *list_, double *buf)
+{
+  for (int i = 0; i < n; i++) dh[list_[i]] += buf[i];
+}
+
+/* ----------------------------------------------------------------------
+   restart: settings and every explicitly set kernel (tables included)
+------------------------------------------------------------------------- */
+
+void PairEQElastic::write_restart_settings(FILE *fp)
+{
+  fwrite(&cut_global, sizeof(double), 1, fp);
+  fwrite(&mix_flag, sizeof(int), 1, fp);
+}
+
+void PairEQElastic::read_restart_settings(FILE *fp)
+{
+  if (comm->me == 0) {
+    utils::sfread(FLERR, &cut_global, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &mix_flag, sizeof(int), 1, fp, nullptr, error);
+  }
+  MPI_Bcast(&cut_global, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&mix_flag, 1, MPI_INT, 0, world);
+}
+
+void PairEQElastic::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      fwrite(&setflag[i][j], sizeof(int), 1, fp);
+      if (!setflag[i][j]) continue;
+      const feq::Kernel &k = kernels[kidx[i][j]];
+      const int kind = (int) k.kind;
+      const int n = (int) k.r.size();
+      const int aniso = k.anisotropic() ? 1 : 0;
+      fwrite(&kind, sizeof(int), 1, fp);
+      fwrite(&k.ftilde, sizeof(double), 1, fp);
+      fwrite(&k.lambda, sizeof(double), 1, fp);
+      fwrite(&cut[i][j], sizeof(double), 1, fp);
+      fwrite(&n, sizeof(int), 1, fp);
+      fwrite(&aniso, sizeof(int), 1, fp);
+      if (n > 0) {
+        fwrite(k.r.data(), sizeof(double), n, fp);
+        fwrite(k.k0.data(), sizeof(double), n, fp);
+        if (aniso) fwrite(k.k2.data(), sizeof(double), n, fp);
+      }
+    }
+}
+
+void PairEQElastic::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  kernels.clear();
+  const int me = comm->me;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+      if (!setflag[i][j]) continue;
+      int kind = 0, n = 0, aniso = 0;
+      feq::Kernel k;
+      if (me == 0) {
+        utils::sfread(FLERR, &kind, sizeof(int), 1, fp, nullptr, error);
+        utils::sfread(FLERR, &k.ftilde, sizeof(double), 1, fp, nullptr, error);
+        utils::sfread(FLERR, &k.lambda, sizeof(double), 1, fp, nullptr, error);
+        utils::sfread(FLERR, &cut[i][j], sizeof(double), 1, fp, nullptr, error);
+        utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, error);
+        utils::sfread(FLERR, &aniso, sizeof(int), 1, fp, nullptr, error);
+      }
+      MPI_Bcast(&kind, 1, MPI_INT, 0, world);
+      MPI_Bcast(&k.ftilde, 1, MPI_DOUBLE, 0, world);
+      MPI_Bcast(&k.lambda, 1, MPI_DOUBLE, 0, world);
+      MPI_Bcast(&cut[i][j], 1, MPI_DOUBLE, 0, world);
+      MPI_Bcast(&n, 1, MPI_INT, 0, world);
+      MPI_Bcast(&aniso, 1, MPI_INT, 0, world);
+      k.kind = (feq::Kernel::Kind) kind;
+      k.r.resize(n);
+      k.k0.resize(n);
+      if (aniso) k.k2.resize(n);
+      if (n > 0) {
+        if (me == 0) {
+          utils::sfread(FLERR, k.r.data(), sizeof(double), n, fp, nullptr, error);
+          utils::sfread(FLERR, k.k0.data(), sizeof(double), n, fp, nullptr, error);
+          if (aniso) utils::sfread(FLERR, k.k2.data(), sizeof(double), n, fp, nullptr, error);
+        }
+        MPI_Bcast(k.r.data(), n, MPI_DOUBLE, 0, world);
+        MPI_Bcast(k.k0.data(), n, MPI_DOUBLE, 0, world);
+        if (aniso) MPI_Bcast(k.k2.data(), n, MPI_DOUBLE, 0, world);
+      }
+      k.source = k.kind == feq::Kernel::TABLE ? "table (restart)" : "crossover";
+      kernels.push_back(k);
+      kidx[i][j] = (int) kernels.size() - 1;
+      ftilde[i][j] = k.ftilde;
+      lambda[i][j] = k.lambda;
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairEQElastic::memory_usage()
+{
+  double bytes = Pair::memory_usage();
+  bytes += 3.0 * nmax * sizeof(double);
+  return bytes;
+}

@@ -1,0 +1,96 @@
+"""pair eq/elastic against an independent numpy evaluation of the model
+(paper Sec. IV): h_i = sum_j k_ij (x_i - x_j) with the crossover kernel
+(or a table), energy (1/2) sum_pairs k_ij (x_i - x_j)^2, force on contact
+i along the sliding direction -(k_i x_i + h_i), per-atom energies,
+single() (compute pair/local), the virial, and sum_i h_i = 0 (the
+interaction redistributes force, it does not change the friction force).
+"""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import eqtools
+
+ROOT = Path(__file__).resolve().parents[2]
+INPUT = ROOT / "unittest" / "python" / "inputs" / "in.interact-forces"
+TABLE = ROOT / "potentials" / "eq_crossover.table"
+
+
+def kernel_crossover(ft, lam):
+    return lambda r, c2: np.where(r <= lam, ft / r, ft * lam * lam / r ** 3)
+
+
+def kernel_aniso(r, c2):
+    # ANISO_TEST of eq_crossover.table: k0 = 1/r, k2 = 0.3/r up to r = 8
+    return np.where(r <= 8.0, (1.0 + 0.3 * c2) / r, 0.0)
+
+
+CASES = {
+    "crossover": ({"coeff": "0.3 2.0", "rcut": 3.5}, kernel_crossover(0.3, 2.0), 3.5, 0),
+    "near-zone-y": ({"coeff": "0.2 3.0", "rcut": 3.0, "dir": "y"}, kernel_crossover(0.2, 3.0), 3.0, 1),
+    "aniso-table": ({"coeff": f"table {TABLE} ANISO_TEST", "rcut": 4.0}, kernel_aniso, 4.0, 0),
+}
+
+
+def read_dump(path):
+    text = Path(path).read_text()
+    box = text.split("ITEM: BOX BOUNDS")[1].splitlines()[1:3]
+    L = np.array([float(b.split()[1]) - float(b.split()[0]) for b in box])
+    rows = text.split("ITEM: ATOMS")[1].strip().splitlines()[1:]
+    return L, np.array([[float(v) for v in l.split()] for l in rows])
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_pair_against_numpy(tmp_path, case):
+    var, kern, rcut, d = CASES[case]
+    log = eqtools.run_lammps(INPUT, dict(var, out=tmp_path), cwd=tmp_path)
+    L, a = read_dump(tmp_path / "atoms.dump")
+    ids, x, y, s, k, h, fx, fy, pe = a.T
+    n = len(ids)
+    # all pairs, minimum image in the periodic box
+    dx = x[:, None] - x[None, :]
+    dy = y[:, None] - y[None, :]
+    dx -= L[0] * np.round(dx / L[0])
+    dy -= L[1] * np.round(dy / L[1])
+    r = np.hypot(dx, dy)
+    np.fill_diagonal(r, np.inf)
+    inside = r <= rcut
+    c2 = 2.0 * (dx if d == 0 else dy) ** 2 / np.where(inside, r * r, 1.0) - 1.0
+    kij = np.where(inside, kern(np.where(inside, r, 1.0), c2), 0.0)
+    ds = s[:, None] - s[None, :]
+    h_ref = np.sum(kij * ds, axis=1)
+    e_ref = 0.25 * np.sum(kij * ds * ds)
+    scale = np.max(np.abs(h_ref))
+    assert scale > 0.05                      # the test exercises the interaction
+    assert np.max(np.abs(h - h_ref)) < 1e-12 * max(1.0, scale)
+    assert abs(np.sum(h)) < 1e-12 * n * scale
+    # forces: spring + interaction along the sliding direction only
+    f_along, f_across = (fx, fy) if d == 0 else (fy, fx)
+    assert np.max(np.abs(f_along + k * s + h)) < 1e-12
+    assert np.max(np.abs(f_across)) == 0.0
+    # energies: per atom and total
+    assert np.max(np.abs(pe - 0.25 * np.sum(kij * ds * ds, axis=1))) < 1e-12
+    thermo = [l for l in log.splitlines() if l.split()[:1] == ["0"]][-1].split()
+    assert abs(float(thermo[1]) * n - e_ref) < 1e-10 * max(1.0, e_ref) or \
+        abs(float(thermo[1]) - e_ref) < 1e-10 * max(1.0, e_ref)
+    # virial: W_ab = sum_pairs del_a f_b with f = -k_ij (x_i - x_j) along dir
+    # (pressure = W / area; the atoms are at rest)
+    fpair = -kij * ds
+    w = {"xx": 0.5 * np.sum(dx * fpair) if d == 0 else 0.0,
+         "yy": 0.5 * np.sum(dy * fpair) if d == 1 else 0.0}
+    area = L[0] * L[1]
+    pxx, pyy, pxy = (float(v) for v in thermo[3:6])
+    # (LAMMPS' xy entry is sum del_x f_y; for dir x it is sum del_x f_y = 0)
+    assert abs(pxx - w["xx"] / area) < 1e-10 and abs(pyy - w["yy"] / area) < 1e-10
+    assert abs(pxy - (0.5 * np.sum(dx * fpair) / area if d == 1 else 0.0)) < 1e-10
+    # single(): compute pair/local, p1 = k_ij, p2 = force on i along dir
+    pl = np.array([[float(v) for v in l.split()] for l in
+                   (tmp_path / "pairs.dump").read_text().split("ITEM: ENTRIES")[1].strip().splitlines()[1:]])
+    assert len(pl) > n
+    e_pairs = pl[:, 2]
+    assert abs(np.sum(e_pairs) - e_ref) < 1e-10 * max(1.0, e_ref)
+    assert np.all(pl[:, 1] <= rcut * (1 + 1e-9))
+    assert np.allclose(pl[:, 2], 0.5 * pl[:, 3] * (pl[:, 4] / np.where(pl[:, 3] > 0, pl[:, 3], 1)) ** 2,
+                       rtol=1e-9, atol=1e-14)
