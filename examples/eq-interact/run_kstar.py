@@ -205,7 +205,8 @@ def summary(res):
     lines = [
         "# FRICTION-EQ, paper Fig. mf.B08: realistic thresholds x_s = 1 (x_c = %.4f), "
         "N = %d, quasi-static drive, seeds %s" % (XC, res["N"], res["seeds"]),
-        "# ME without interaction: K*/K_s = %.6f at X = %.4f" % (res["kstar_me"], res["kstar_me_X"]),
+        "# ME without interaction: K*/K_s = %.6f at X = %.4f"
+        % (res["kstar_me"], res["kstar_me_X"]),
         "# estimator: X* from the quartic derivative of the seed-mean F(X) (half-window %g), "
         "K*_eff = quartic derivative at X* (half-window %g) per seed, mean +- standard error"
         % (LOCATE, WINDOW),
@@ -219,7 +220,8 @@ def summary(res):
     for r in res["rows"]:
         b = "%6.3f" % r["beta0"] if r["beta0"] is not None else " (n/a)"
         chk = " ".join("%5.2f+-%.2f" % (c["kstar"] / k0, c["se"] / k0) for c in r["checks"])
-        lines.append("%6.3f  %6.3f  %5.3f  %5.3f | %s |    %s     | %5d (%.3f)   %.4f at %.2f  %.2f%s"
+        lines.append("%6.3f  %6.3f  %5.3f  %5.3f | %s |    %s     | %5d (%.3f)   %.4f at %.2f"
+                     "  %.2f%s"
                      % (r["kappa"], r["ratio"], r["ratio_se"], r["x_star"], chk, b, r["largest"],
                         r["largest_frac"], r["drop"], r["drop_X"], r["drop_fraction"],
                         "  abrupt" if r["abrupt"] else ""))

@@ -47,7 +47,8 @@ def run_one(kappa, out, Kratio=2.0, seed=2024, xend=6.0, nx=60, ny=34, gamma=2.0
     d.mkdir(parents=True, exist_ok=True)
     eqtools.run_lammps(HERE / "in.eq-interact-spring",
                        {"kappa": kappa, "xc": XC, "Kratio": Kratio, "seed": seed, "Xend": xend,
-                        "nx": nx, "ny": ny, "gamma": gamma, "dt": dt, "v": V_STAGE, "contacts": CONTACTS,
+                        "nx": nx, "ny": ny, "gamma": gamma, "dt": dt, "v": V_STAGE,
+                        "contacts": CONTACTS,
                         "out": d}, nprocs=nprocs, cwd=d)
     return eqtools.load(d / "slider.dat")[:, 1:]      # Xs X V F_friction F_spring
 
@@ -70,7 +71,8 @@ def slips(d, v=V_STAGE, window=WINDOW, load=LOAD):
             if X[j] - X[i] > 5 * window:
                 events.append({"stage": float(Xs[i]), "X": float(X[i]),
                                "jump": float(X[j] - X[i]),
-                               "drop": float(Fk[max(i - 1, 0)] - Fk[j:min(j + 2 * n, len(Fk))].min())})
+                               "drop": float(Fk[max(i - 1, 0)]
+                                             - Fk[j:min(j + 2 * n, len(Fk))].min())})
             i = j + 1
         else:
             i += 1
@@ -124,11 +126,11 @@ def make_plot(out, res):
         d = r["data"]
         lab = "$\\kappa$ = %g (%s)" % (r["kappa"], "stick-slip" if r["stick_slip"] else "smooth")
         axes[0].plot(d[:, 0], d[:, 4], "-", lw=0.7, color="C%d" % i, label=lab)
-        axes[1].plot(d[:, 0], d[:, 2] / V_STAGE + 0 * i, "-", lw=0.5, color="C%d" % i)
+        axes[1].plot(d[:, 0], d[:, 2] / V_STAGE, "-", lw=0.5, color="C%d" % i)
     axes[0].set_ylabel("spring force $K(X_{stage} - X)/(N k_c)$")
     axes[0].legend(fontsize=7)
-    axes[0].set_title("slider on realistic thresholds, K = %g K*, N = %d" % (res["Kratio"], res["N"]),
-                      fontsize=9)
+    axes[0].set_title("slider on realistic thresholds, K = %g K*, N = %d"
+                      % (res["Kratio"], res["N"]), fontsize=9)
     axes[1].set_ylabel("slider velocity / v")
     axes[1].set_xlabel("stage displacement")
     axes[1].axhline(1.0, color="k", lw=0.5, ls=":")
