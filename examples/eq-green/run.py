@@ -85,7 +85,8 @@ def sweep(out, L=513, gammas=SWEEP):
         rows.append([g, s["crossover_lambda_continuum"], s["crossover_lambda_continuum"] * g,
                      s["kappa_tilde_x"], near[0] if near else float("nan"),
                      far[0] if far else float("nan"), s["crossover_continuum_rms"],
-                     s["crossover_lambda"], s["crossover_rms"], s["seconds_total"]])
+                     s["crossover_lambda"], s["crossover_rms"], s["seconds_total"],
+                     s["kappa_tilde_x_continuum"]])
     return np.array(rows)
 
 
@@ -161,9 +162,11 @@ def plot(out, a02, sw):
     ax[0].set_xlabel(r"$\gamma_1$")
     ax[0].set_ylabel(r"crossover length / a")
     ax[0].legend(fontsize=8)
-    ax[1].loglog(g, sw[:, 3], "o", label=r"$\tilde\kappa$ = <r k_x(r)> / ($k_c a$), near zone")
+    ax[1].loglog(g, sw[:, 3], "o", label=r"local $\langle r k_x(r)\rangle/(k_c a)$, $2 \leq r \leq \lambda_c/4$")
+    ax[1].loglog(g, sw[:, 10], "s", mfc="none", label=r"near-zone amplitude of the continuum fit")
     ax[1].loglog(g, g * (1 + SIGMA) / math.pi, "--", label=r"first order $\gamma_1(1+\sigma)/\pi$")
     ax[1].set_xlabel(r"$\gamma_1$")
+    ax[1].set_ylabel(r"$\tilde\kappa$")
     ax[1].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out / "eq-green-crossover.png", dpi=120)
@@ -194,7 +197,7 @@ def main(argv=None):
     sw = sweep(out)
     np.savetxt(out / "crossover.dat", sw,
                header="gamma1 lambda lambda*gamma1 kappa_tilde_x near_exp far_exp rms "
-               "lambda_algebraic rms_algebraic seconds")
+               "lambda_algebraic rms_algebraic seconds kappa_tilde_x_continuum")
     print("Crossover of the slip kernel k_x(r) (open 513x513, r <= 85): fit A psi(r/lambda),")
     print("psi = continuum crossover shape (doc/src/eq_green.rst); algebraic A/(r(1+(r/l)^2)) "
           "for comparison")
