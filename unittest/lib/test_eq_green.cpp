@@ -134,14 +134,14 @@ TEST(GreenSolver, CirculantPreconditionerIsExactOnIntactPeriodicLattice)
   Eigen::VectorXd u = Eigen::VectorXd::Random(s.ncomp() * s.sites());
   s.solve(std::vector<double>(s.sites(), 1.0), u, &st);
   EXPECT_EQ(st.iterations, 1);
-  // open array: the circulant preconditioner beats Jacobi (measured: 19
-  // against 38 iterations at gamma1 = 0.8, 12 against 16 at gamma1 = 0.06)
+  // open array: the circulant preconditioner beats Jacobi (measured: 12
+  // against 38 iterations at gamma1 = 0.8, 10 against 16 at gamma1 = 0.06)
   GreenOptions oj;
   oj.precond = GreenPrecond::JACOBI;
   GreenSolver sc(params(61, 0.8)), sj(params(61, 0.8), oj);
   GreenRemoval rc = green_remove_contact(sc, sc.centre());
   GreenRemoval rj = green_remove_contact(sj, sj.centre());
-  EXPECT_LT(rc.st_state.iterations, rj.st_state.iterations);
+  EXPECT_LT(2 * rc.st_state.iterations, rj.st_state.iterations);
   EXPECT_LT(rel_diff(rc.df_exact, rj.df_exact), 1e-9);
 }
 
