@@ -24,27 +24,36 @@ import eqtools  # noqa: E402
 from eqtools import meanfield as mf  # noqa: E402
 
 
-def run_eq(kappa, out, seed, xmax, xhist, nx=60, ny=34, nprocs=1):
-    d = Path(out) / ("steady_k%g_s%d" % (kappa, seed))
+def run_eq(kappa, out, seed, xmax, xhist, nx=60, ny=34, nprocs=1, lam=3.0):
+    d = Path(out) / ("steady_k%g_s%d_l%g" % (kappa, seed, lam))
     d.mkdir(parents=True, exist_ok=True)
     eqtools.run_lammps(HERE / "in.eq-interact",
                        {"kappa": kappa, "seed": seed, "Xmax": xmax, "Xhist": xhist,
-                        "nx": nx, "ny": ny, "out": d}, nprocs=nprocs, cwd=d)
+                        "nx": nx, "ny": ny, "lam": lam, "out": d}, nprocs=nprocs, cwd=d)
     c, n, tot = eqtools.read_histo(d / "Qs.dat")
     w = c[1] - c[0]
-    return c, n / tot / w
+    return c, n / tot / w, avalanche_sizes(d, xhist)
 
 
-def analyse(kappas, out, seeds, xmax, xhist, nx=60, ny=34):
+def avalanche_sizes(d, xhist):
+    """Sizes of the avalanches (breaks per quasi-static step) at X > xhist."""
+    F = eqtools.load(d / "F.dat")
+    av = np.atleast_2d(np.loadtxt(d / "avalanches.dat"))
+    steps = F[F[:, 1] > xhist, 0]
+    return av[np.isin(av[:, 0], steps), 1]
+
+
+def analyse(kappas, out, seeds, xmax, xhist, nx=60, ny=34, lam=3.0):
     rows = []
     for k in kappas:
-        qs = [run_eq(k, out, s, xmax, xhist, nx, ny) for s in seeds]
+        qs = [run_eq(k, out, s, xmax, xhist, nx, ny, lam=lam) for s in seeds]
         c = qs[0][0]
-        q = np.mean([v for _, v in qs], axis=0)
+        q = np.mean([v for _, v, _ in qs], axis=0)
+        sizes = np.concatenate([a for _, _, a in qs])
         x_me, q_me, _ = mf.solve_steady(k, Path(out) / "me")
         l1_paper = mf.l1_distance(c, q, x_me, q_me)
         rows.append({"kappa": k, "centers": c, "q": q, "x_me": x_me, "q_me": q_me,
-                     "l1_paper": l1_paper})
+                     "l1_paper": l1_paper, "sizes": sizes})
     # fit alpha, beta, gamma per kappa > 0, then b1..b4
     for r in rows:
         if r["kappa"] > 0:
@@ -73,26 +82,32 @@ def main():
     ap.add_argument("--seeds", type=int, nargs="+", default=[4711])
     ap.add_argument("--xmax", type=float, default=8.0)
     ap.add_argument("--xhist", type=float, default=2.0)
+    ap.add_argument("--lam", type=float, default=3.0,
+                    help="lambda_c = rcut (the paper's b1..b4 are for 3; try 5)")
     ap.add_argument("--out", default=str(HERE / "out"))
     args = ap.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    rows, b_own = analyse(args.kappas, out, args.seeds, args.xmax, args.xhist)
+    rows, b_own = analyse(args.kappas, out, args.seeds, args.xmax, args.xhist, lam=args.lam)
 
-    lines = ["# Fig. mf.B02a: N = 4080, seeds %s, Q_s from X in [%g, %g]" %
-             (args.seeds, args.xhist, args.xmax),
+    lines = ["# Fig. mf.B02a: N = 4080, lambda_c = %g, seeds %s, Q_s from X in [%g, %g]" %
+             (args.lam, args.seeds, args.xhist, args.xmax),
              "# paper b1..b4 = %s" % (mf.PAPER_B,),
              "# fitted b1..b4 = %.3f %.3f %.4f %.4f (global fit, 0 < kappa <= 0.1)" % b_own,
-             "# mean field: beta = 1 + kappa S, S = sum_j a/r_j = %.4f (lambda_c = 3a)" %
-             mf.lattice_sum(3.0),
-             "# kappa  L1(paper b) L1(fitted b) | per-kappa fit: alpha beta gamma L1"]
+             "# mean field: beta = 1 + kappa S, S = sum_j a/r_j = %.4f (lambda_c = %ga)" %
+             (mf.lattice_sum(args.lam), args.lam),
+             "# kappa  L1(paper b) L1(fitted b) | per-kappa fit: alpha beta gamma L1 | "
+             "steady avalanches: count, mean size, largest"]
     for r in rows:
         fit = r.get("fit", (0.0, 1.0, 0.0))
-        lines.append("%6.3f  %10.4f  %10.4f  | %.4f %.4f %.4f %.4f" %
-                     (r["kappa"], r["l1_paper"], r["l1_own"], *fit, r.get("l1_fit", r["l1_paper"])))
+        sz = r["sizes"]
+        lines.append("%6.3f  %10.4f  %10.4f  | %.4f %.4f %.4f %.4f | %d %.2f %d" %
+                     (r["kappa"], r["l1_paper"], r["l1_own"], *fit, r.get("l1_fit", r["l1_paper"]),
+                      len(sz), sz.mean() if len(sz) else 0, sz.max() if len(sz) else 0))
     text = "\n".join(lines)
     print(text)
-    (out / "steady_summary.txt").write_text(text + "\n")
+    (out / ("steady_summary.txt" if args.lam == 3.0 else "steady_summary_l%g.txt" % args.lam)
+     ).write_text(text + "\n")
 
     import matplotlib
     matplotlib.use("Agg")
@@ -109,8 +124,9 @@ def main():
     ax.set_title("EQ (dots), ME paper b (solid), ME fitted b (dashed)", fontsize=9)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(out / "steady.png", dpi=110)
-    print("wrote", out / "steady.png")
+    name = "steady.png" if args.lam == 3.0 else "steady_l%g.png" % args.lam
+    fig.savefig(out / name, dpi=90)
+    print("wrote", out / name)
 
 
 if __name__ == "__main__":
