@@ -182,3 +182,39 @@ def zscores(f_eq, f_me, sd_me, n, skew=None, max_skew=0.05):
     with np.errstate(divide="ignore", invalid="ignore"):
         z = np.where(ok, (np.asarray(f_eq) - np.asarray(f_me)) / np.where(ok, se, 1.0), 0.0)
     return z
+
+
+# ---------------------------------------------------------------- eq-green
+def eqgreen_exe():
+    """The eq-green tool: FEQ_EQGREEN, else next to eq-me, else in the build."""
+    if os.environ.get("FEQ_EQGREEN"):
+        return os.environ["FEQ_EQGREEN"]
+    if os.environ.get("FEQ_EQME"):
+        return str(Path(os.environ["FEQ_EQME"]).parent / "eq-green")
+    return str(build_dir() / "eq-green")
+
+
+def run_eqgreen(args, cwd="."):
+    """Run eq-green with keyword arguments (a list); returns its summary dict."""
+    summary = Path(cwd) / "eqgreen_summary.txt"
+    cmd = [eqgreen_exe()] + [str(a) for a in args] + ["summary", str(summary)]
+    p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if p.returncode != 0:
+        raise RunError("eq-green failed (%s):\n%s" % (" ".join(cmd), p.stdout))
+    out = {}
+    for line in summary.read_text().splitlines():
+        k, v = line.split()
+        out[k] = float(v)
+    out["stdout"] = p.stdout
+    return out
+
+
+def read_green_profile(path):
+    """eq-green profile file as {dir: array[r, dfx, dfy, dfx_lin, dfy_lin, kernel_x]}."""
+    rows = {}
+    for line in Path(path).read_text().splitlines():
+        if not line.strip() or line.startswith("#"):
+            continue
+        w = line.split()
+        rows.setdefault(w[0], []).append([float(x) for x in w[1:]])
+    return {k: np.array(v) for k, v in rows.items()}
