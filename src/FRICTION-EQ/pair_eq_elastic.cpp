@@ -5,7 +5,9 @@
    Tosatti, Secs. III-IV).  The contacts and their stretches belong to fix
    eq/contacts; this style evaluates the interaction field
    h_i = sum_j k_ij (x_i - x_j), its forces -h_i along the sliding
-   direction, energy and virial.  The kernel k(r) is a LAMMPS-free unit
+   direction, energy and virial.  With fix eq/substrate instead, x_i are
+   the displacements of FK-ME blocks (Sec. V B) and the style is their
+   scalar elastic coupling (e.g. a 2d interface of blocks).  The kernel k(r) is a LAMMPS-free unit
    (lib/eq_kernel.h).  A full neighbor list gives every contact all its
    partners, so the field of a contact is complete on its owner rank and
    changes after breaks are scattered with one reverse communication.
@@ -17,6 +19,7 @@
 #include "comm.h"
 #include "error.h"
 #include "fix_eq_contacts.h"
+#include "fix_eq_substrate.h"
 #include "force.h"
 #include "memory.h"
 #include "modify.h"
@@ -49,7 +52,7 @@ const char *USAGE = "expected 'pair_coeff I J ftilde lambda_c [rcut]' or "
 
 PairEQElastic::PairEQElastic(LAMMPS *lmp) :
     Pair(lmp), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr), lambda(nullptr), kidx(nullptr),
-    anisotropic(0), fix(nullptr), idir(0), fresh(0), comm_mode(0), nmax(0), sx(nullptr),
+    anisotropic(0), fix(nullptr), sub(nullptr), hcol(0), idir(0), fresh(0), comm_mode(0), nmax(0), sx(nullptr),
     dh(nullptr), ksum(nullptr), ghosts_current(0)
 {
   single_enable = 1;
@@ -208,22 +211,36 @@ void PairEQElastic::init_style()
 {
   if (!atom->tag_enable) error->all(FLERR, "Pair style eq/elastic requires atom IDs");
 
-  // exactly one fix eq/contacts holds the contacts
+  // exactly one fix eq/contacts (contacts and their stretches) or one fix
+  // eq/substrate (FK-ME blocks and their displacements)
   fix = nullptr;
-  int nfound = 0;
-  for (int i = 0; i < modify->nfix; i++)
+  sub = nullptr;
+  int ncontacts = 0, nsubstrate = 0;
+  for (int i = 0; i < modify->nfix; i++) {
     if (utils::strmatch(modify->fix[i]->style, "^eq/contacts$")) {
       fix = dynamic_cast<FixEQContacts *>(modify->fix[i]);
-      ++nfound;
+      ++ncontacts;
     }
-  if (nfound == 0)
+    if (utils::strmatch(modify->fix[i]->style, "^eq/substrate$")) {
+      sub = dynamic_cast<FixEQSubstrate *>(modify->fix[i]);
+      ++nsubstrate;
+    }
+  }
+  if (ncontacts + nsubstrate == 0)
     error->all(FLERR, "Pair style eq/elastic needs a fix eq/contacts (the contacts and their "
-                      "stretches); define it before the run");
-  if (nfound > 1)
-    error->all(FLERR, "Pair style eq/elastic found {} fixes eq/contacts; allowed: exactly one",
-               nfound);
+                      "stretches) or a fix eq/substrate (blocks and their displacements); define "
+                      "it before the run");
+  if (ncontacts > 1 || nsubstrate > 1 || (ncontacts && nsubstrate))
+    error->all(FLERR, "Pair style eq/elastic found {} fixes eq/contacts and {} fixes eq/substrate; "
+               "allowed: exactly one of either", ncontacts, nsubstrate);
   int dim;
-  idir = *(int *) fix->extract("dir", dim);
+  if (fix) {
+    idir = *(int *) fix->extract("dir", dim);
+    hcol = FixEQContacts::INTERACT;
+  } else {
+    idir = *(int *) sub->extract("dir", dim);
+    hcol = FixEQSubstrate::INTERACT;
+  }
 
   anisotropic = 0;
   for (const auto &k : kernels)
@@ -287,20 +304,35 @@ inline double PairEQElastic::kval(int itype, int jtype, double rsq, const double
 }
 
 /* ----------------------------------------------------------------------
+   per-atom state of the fix that holds the coupled coordinates
+------------------------------------------------------------------------- */
+
+double **PairEQElastic::state()
+{
+  int dim;
+  return fix ? (double **) fix->extract("state", dim) : (double **) sub->extract("state", dim);
+}
+
+/* ----------------------------------------------------------------------
    stretches of local contacts from the fix, then to the ghosts
 ------------------------------------------------------------------------- */
 
 void PairEQElastic::load_stretches()
 {
-  int dim;
-  double **st = (double **) fix->extract("state", dim);
+  double **st = state();
   const int *mask = atom->mask;
-  const int groupbit = fix->groupbit;
   const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++)
-    sx[i] = ((mask[i] & groupbit) && st[i][FixEQContacts::THRESHOLD] > 0.0)
-        ? st[i][FixEQContacts::STRETCH]
-        : NOT_A_CONTACT;
+  if (fix) {
+    const int groupbit = fix->groupbit;
+    for (int i = 0; i < nlocal; i++)
+      sx[i] = ((mask[i] & groupbit) && st[i][FixEQContacts::THRESHOLD] > 0.0)
+          ? st[i][FixEQContacts::STRETCH]
+          : NOT_A_CONTACT;
+  } else {
+    const int groupbit = sub->groupbit;
+    for (int i = 0; i < nlocal; i++)
+      sx[i] = (mask[i] & groupbit) ? st[i][FixEQSubstrate::DISP] : NOT_A_CONTACT;
+  }
   comm_mode = COMM_STRETCH;
   comm->forward_comm_pair(this);
   ghosts_current = 1;
@@ -314,8 +346,7 @@ void PairEQElastic::field()
 {
   grow();
   load_stretches();
-  int dim;
-  double **st = (double **) fix->extract("state", dim);
+  double **st = state();
   double **x = atom->x;
   const int *type = atom->type;
   const double *special_lj = force->special_lj;
@@ -323,13 +354,21 @@ void PairEQElastic::field()
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
+  const int d = idir;
+  // blocks couple by the distance of their sites, found in the neighbor
+  // list of the current positions: a coupled pair is in the list as long
+  // as its displacements differ by less than the skin (checked with a
+  // margin of a factor 2 for the motion until the next list build)
+  const double dumax = 0.5 * neighbor->skin;
+  double dubig = 0.0;
+  tagint ibig = 0, jbig = 0;
 
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const double si = sx[i];
     if (std::isnan(si)) {
       ksum[i] = 0.0;
-      st[i][FixEQContacts::INTERACT] = 0.0;
+      st[i][hcol] = 0.0;
       continue;
     }
     const int itype = type[i];
@@ -343,16 +382,28 @@ void PairEQElastic::field()
       const double sj = sx[j];
       if (std::isnan(sj)) continue;
       const int jtype = type[j];
-      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      if (sub) del[d] -= si - sj;    // blocks: the distance of their sites
       const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
       if (rsq > cutsq_in[itype][jtype]) continue;
       const double k = factor * kval(itype, jtype, rsq, del);
       ki += k;
       hi += k * (si - sj);
+      if (sub && std::fabs(si - sj) > dubig) {
+        dubig = std::fabs(si - sj);
+        ibig = atom->tag[i];
+        jbig = atom->tag[j];
+      }
     }
     ksum[i] = ki;
-    st[i][FixEQContacts::INTERACT] = hi;
+    st[i][hcol] = hi;
   }
+  if (dubig > dumax)
+    error->one(FLERR,
+               "Pair eq/elastic: the displacements of coupled blocks {} and {} differ by {:.6g}, more "
+               "than half the neighbor skin {}: coupled pairs may be missing from the neighbor "
+               "list; raise the skin (neighbor SKIN bin) above twice the largest difference",
+               ibig, jbig, dubig, neighbor->skin);
 }
 
 /* ----------------------------------------------------------------------
@@ -362,8 +413,7 @@ void PairEQElastic::field()
 
 void PairEQElastic::scatter(const int *clist, int n, const double *ds)
 {
-  int dim;
-  double **st = (double **) fix->extract("state", dim);
+  double **st = state();
   double **x = atom->x;
   const int *type = atom->type;
   const double *special_lj = force->special_lj;
@@ -386,7 +436,8 @@ void PairEQElastic::scatter(const int *clist, int n, const double *ds)
       j &= NEIGHMASK;
       if (std::isnan(sx[j])) continue;
       const int jtype = type[j];
-      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      if (sub) del[idir] -= sx[i] - sx[j];
       const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
       if (rsq > cutsq_in[itype][jtype]) continue;
       dh[j] -= factor * kval(itype, jtype, rsq, del) * d;
@@ -394,7 +445,7 @@ void PairEQElastic::scatter(const int *clist, int n, const double *ds)
   }
   comm->reverse_comm_pair(this);
   for (int i = 0; i < nlocal; i++)
-    if (!std::isnan(sx[i])) st[i][FixEQContacts::INTERACT] += dh[i];
+    if (!std::isnan(sx[i])) st[i][hcol] += dh[i];
   ghosts_current = 0;
 }
 
@@ -405,20 +456,21 @@ void PairEQElastic::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
   grow();
   if (!fresh) {
-    // not prepared by the fix this step (run 0, minimization, rerun):
-    // stretches from the current positions, no breaking
-    fix->update_stretches();
+    // not prepared by fix eq/contacts this step (run 0, minimization,
+    // rerun; always with fix eq/substrate): stretches or displacements
+    // from the current positions, no breaking
+    if (fix) fix->update_stretches();
+    else sub->update_displacements();
     field();
   }
   fresh = 0;
 
-  int dim;
-  double **st = (double **) fix->extract("state", dim);
+  double **st = state();
   double **f = atom->f;
   const int nlocal = atom->nlocal;
   const int d = idir;
   for (int i = 0; i < nlocal; i++)
-    if (!std::isnan(sx[i])) f[i][d] -= st[i][FixEQContacts::INTERACT];
+    if (!std::isnan(sx[i])) f[i][d] -= st[i][hcol];
 
   if (!evflag) return;
 
@@ -447,7 +499,8 @@ void PairEQElastic::compute(int eflag, int vflag)
       const double sj = sx[j];
       if (std::isnan(sj)) continue;
       const int jtype = type[j];
-      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      if (sub) del[d] -= si - sj;
       const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
       if (rsq > cutsq_in[itype][jtype]) continue;
       const double k = factor * kval(itype, jtype, rsq, del);
@@ -468,11 +521,14 @@ double PairEQElastic::single(int i, int j, int itype, int jtype, double rsq,
 {
   fforce = 0.0;
   svector[0] = svector[1] = 0.0;
-  if (!fix || !sx || i >= nmax || j >= nmax) return 0.0;
+  if ((!fix && !sub) || !sx || i >= nmax || j >= nmax) return 0.0;
   if (std::isnan(sx[i]) || std::isnan(sx[j])) return 0.0;
   if (rsq > cutsq_in[itype][jtype]) return 0.0;
   double **x = atom->x;
-  const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+  double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+  if (sub) del[idir] -= sx[i] - sx[j];
+  rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+  if (rsq > cutsq_in[itype][jtype]) return 0.0;
   const double k = factor_lj * kval(itype, jtype, rsq, del);
   const double ds = sx[i] - sx[j];
   svector[0] = k;

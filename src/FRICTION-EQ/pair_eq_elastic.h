@@ -6,6 +6,7 @@
    contacts' stretches x_i, with k(r) = ftilde/r below lambda_c and
    ftilde lambda_c^2/r^3 beyond (or a table).  Its per-contact force
    h_i = sum_j k_ij (x_i - x_j) enters the breaking test of the fix.
+   With fix eq/substrate, x_i are the displacements of FK-ME blocks.
    See doc/src/pair_eq_elastic.rst.
 ------------------------------------------------------------------------- */
 
@@ -67,7 +68,9 @@ class PairEQElastic : public Pair {
   std::vector<feq::Kernel> kernels;
   int anisotropic;
 
-  class FixEQContacts *fix;
+  class FixEQContacts *fix;       // the contacts, or nullptr
+  class FixEQSubstrate *sub;      // or the FK-ME blocks, or nullptr
+  int hcol;                       // column of h_i in the fix's state
   int idir;
   int fresh;         // h in the fix state is current for this step
   int comm_mode;     // what forward comm carries
@@ -80,6 +83,7 @@ class PairEQElastic : public Pair {
   void allocate();
   void grow();
   void load_stretches();
+  double **state();
   double kval(int itype, int jtype, double rsq, const double *del) const;
 };
 

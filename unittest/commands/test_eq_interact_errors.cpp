@@ -120,7 +120,8 @@ TEST_F(EQInteractErrors, PairNeedsContactsAndMixing)
   command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25");
   command("fix d all eq/contacts 1.0 6 threshold uniform 0.75 1.25");
   END_HIDE_OUTPUT();
-  TEST_FAILURE(".*ERROR: Pair style eq/elastic found 2 fixes eq/contacts; allowed: exactly one.*",
+  TEST_FAILURE(".*ERROR: Pair style eq/elastic found 2 fixes eq/contacts and 0 fixes "
+               "eq/substrate; allowed: exactly one of either.*",
                command("run 0 post no"););
   BEGIN_HIDE_OUTPUT();
   command("unfix d");

@@ -23,6 +23,9 @@
      exact FILE      uniform thresholds, reform delta 0, relaxed start:
                      the exact renewal solution X <x> <x^2> Gamma (every
                      0.01 in X), and the maximum deviation of the ME from it
+     substrate FILE KEYWORD uc
+                     the substrate shape phi(u) = F(u)/(N kc) on [0, uc] of a
+                     rigid lambda_c block, as a table for fix eq/substrate
    See doc/src/eq_me.rst.
 ------------------------------------------------------------------------- */
 

@@ -5,6 +5,7 @@
 #include "eq_me_job.h"
 
 #include "eq_renewal_exact.h"
+#include "eq_substrate.h"
 
 #include <algorithm>
 #include <chrono>
@@ -51,7 +52,7 @@ bool exact_applies(const MEJob &job)
 const char *me_job_keywords()
 {
   return "threshold, reform, stiffness, dir, xmax, dx, start, crossing, richardson, force, steady, "
-         "snapshot, summary, exact";
+         "snapshot, summary, exact, substrate";
 }
 
 MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &number,
@@ -119,6 +120,11 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
       job.summary_file = value(kw);
     } else if (kw == "exact") {
       job.exact_file = value(kw);
+    } else if (kw == "substrate") {
+      job.substrate_file = value(kw);
+      job.substrate_key = value(kw);
+      job.substrate_uc = num(kw);
+      if (!(job.substrate_uc > 0.0)) throw SpecError("substrate: uc must be > 0");
     } else if (kw == "snapshot") {
       const double X = num(kw);
       job.snapshots.emplace_back(X, value(kw));
@@ -152,6 +158,9 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
   if (!job.exact_file.empty() && !exact_applies(job))
     throw SpecError("exact: needs threshold uniform lo hi with lo > 0, reform delta 0, start "
                     "relaxed, crossing exact");
+  if (!job.substrate_file.empty() && job.substrate_uc > job.opt.Xmax * (1.0 + 1e-12))
+    throw SpecError("substrate: uc = " + std::to_string(job.substrate_uc) +
+                    " beyond xmax = " + std::to_string(job.opt.Xmax) + "; raise xmax");
   for (const auto &s : job.snapshots)
     if (!(s.first >= 0.0 && s.first <= job.opt.Xmax + 0.5 * job.opt.dx))
       throw SpecError("snapshot: X = " + std::to_string(s.first) + " outside [0, xmax]");
@@ -298,6 +307,38 @@ MEReport run_me_job(const MEJob &job, bool write_files)
     out << "# eq-me Q(x;X) at X = " << res.snapX[idx] << "\n# x Q(x;X)\n";
     for (size_t j = 0; j < res.x.size(); ++j)
       if (res.snapQ[idx][j] != 0.0) out << res.x[j] << " " << res.snapQ[idx][j] << "\n";
+  }
+  if (!job.substrate_file.empty()) {
+    // F(X)/(N k_c) on [0, uc]: the grid points below uc, then uc itself
+    // (linear interpolation between the two grid points around it)
+    std::vector<double> u, phi;
+    const double uc = job.substrate_uc;
+    for (size_t k = 0; k < res.X.size() && res.X[k] < uc - 1e-9 * opt.dx; ++k) {
+      u.push_back(res.X[k]);
+      phi.push_back(res.F[k]);
+    }
+    const size_t k = u.size();
+    double last = res.F.back();
+    if (k < res.X.size()) {
+      const double t = (uc - res.X[k - 1]) / (res.X[k] - res.X[k - 1]);
+      last = res.F[k - 1] + t * (res.F[k] - res.F[k - 1]);
+    }
+    u.push_back(uc);
+    phi.push_back(last);
+    const std::string comment =
+        "FK-ME substrate shape phi(u) = F(u)/(N k_c) of a rigid block from the master equation\n"
+        "(eq-me / eq/me): threshold " + job.threshold.text + ", reform " + job.reform.text +
+        ", stiffness " + job.stiffness.text + ", start " +
+        (opt.start == MEStart::RELAXED ? "relaxed" : "reform") + ", dx " + format("%g", opt.dx) +
+        (job.richardson ? " (Richardson)" : "") + "\nperiod uc = " + format("%g", uc) +
+        "; use: fix ID group eq/substrate kc table FILE " + job.substrate_key + "\ncolumns: index u phi(u)";
+    // validated as fix eq/substrate will read it
+    SubstrateShape::table(u, phi, job.substrate_file + " " + job.substrate_key);
+    std::ofstream out = open_out(job.substrate_file);
+    out << substrate_table_text(job.substrate_key, u, phi, comment);
+    t += format("  substrate    %s %s: phi(u) on [0, %g], %zu points, max phi = %.6f\n",
+                job.substrate_file.c_str(), job.substrate_key.c_str(), uc, u.size(),
+                *std::max_element(phi.begin(), phi.end()));
   }
   if (!job.summary_file.empty()) {
     std::ofstream out = open_out(job.summary_file);

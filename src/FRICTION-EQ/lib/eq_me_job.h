@@ -16,6 +16,8 @@
      crossing exact|step    (exact)
      richardson yes|no      (yes with crossing exact, no with crossing step)
      force FILE | steady FILE | snapshot X FILE | summary FILE | exact FILE
+     substrate FILE KEYWORD uc   the block's substrate shape phi(u) = F(u)/(N k_c)
+                            on [0, uc] as a table section for fix eq/substrate
 ------------------------------------------------------------------------- */
 
 #ifndef FEQ_ME_JOB_H
@@ -36,6 +38,8 @@ struct MEJob {
   MEOptions opt;
   bool richardson = true;    // set from "auto" after parsing
   std::string force_file, steady_file, summary_file, exact_file;
+  std::string substrate_file, substrate_key;    // FK-ME substrate table
+  double substrate_uc = 0.0;
   std::vector<std::pair<double, std::string>> snapshots;
   double xmax_requested = 0.0;    // before rounding to a multiple of dx
 };

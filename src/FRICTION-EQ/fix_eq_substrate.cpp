@@ -1,0 +1,623 @@
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: fix eq/substrate
+
+   Substrate force of the lambda_c blocks of the FK-ME model (Braun,
+   Peyrard, Stryzheus, Tosatti, "Collective effects at frictional
+   interfaces", Sec. V B, Eq. crack.eqi00), with optional driving springs
+   to a moving stage.  The shapes live in the LAMMPS-free lib/eq_substrate;
+   this fix adapts them to LAMMPS atoms, forces, output, exchange and
+   restart (per-atom state as in fix spring/self).
+------------------------------------------------------------------------- */
+
+#include "fix_eq_substrate.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "group.h"
+#include "memory.h"
+#include "respa.h"
+#include "update.h"
+#include "utils.h"
+
+#include "eq_lammps_util.h"
+#include "eq_random.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace {
+const char *KEYWORDS = "dir, drive, stage, reverse, disorder";
+const char *SHAPES = "sawtooth, smooth, table";
+// global vector: f = K X_s, X_s, v_stage, <v>, <u>, sum F_s, sum drive, E_sub, E_drive, N
+enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE, V_COUNT, NVEC };
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), idir(0), ilevel_respa(0), nlevels_respa(0), rev_break(0), drive_flag(0), kdrive(0.0),
+    vstage(0.0), stage(0.0), dseed(0), jump_warned(0), state(nullptr), neval(0),
+    reduced_eval(-1)
+{
+  if (narg < 5)
+    error->all(FLERR, "Illegal fix eq/substrate command: expected 'fix ID group eq/substrate kc "
+                      "<shape> <values> [keyword values ...]' with shape one of: {}", SHAPES);
+  if (!atom->tag_enable) error->all(FLERR, "Fix eq/substrate requires atom IDs (atom_modify id yes)");
+
+  kc = utils::numeric(FLERR, arg[3], false, lmp);
+  if (!(kc >= 0.0)) error->all(FLERR, "Fix eq/substrate: kc must be >= 0 (got {})", arg[3]);
+
+  const std::vector<std::string> args(arg, arg + narg);
+  const feq::NumberParser number = EQUtil::number_parser(lmp);
+  auto value = [&](size_t &pos, const std::string &what) -> double {
+    if (pos >= args.size()) throw feq::SpecError(what + ": missing value");
+    const std::string &tok = args[pos++];
+    try {
+      return number(tok);
+    } catch (const feq::SpecError &) {
+      throw feq::SpecError(what + ": expected a number, got '" + tok + "'");
+    }
+  };
+
+  size_t iarg = 4;
+  double stage0 = 0.0;
+  try {
+    const std::string &style = args[iarg++];
+    if (style == "sawtooth" || style == "smooth") {
+      const double uc = value(iarg, style + " uc");
+      if (!(uc > 0.0)) throw feq::SpecError(style + ": uc must be > 0 (got " + args[iarg - 1] + ")");
+      shape = style == "sawtooth" ? feq::SubstrateShape::sawtooth(uc) : feq::SubstrateShape::smooth(uc);
+    } else if (style == "table") {
+      if (iarg + 2 > args.size())
+        throw feq::SpecError("table: expected 2 values (file keyword), got " +
+                             std::to_string(args.size() - iarg));
+      const std::string file = args[iarg++], key = args[iarg++];
+      std::vector<double> u, phi;
+      try {
+        feq::read_table_text(EQUtil::file_loader(lmp)(file), file, key, u, phi);
+      } catch (const feq::SpecError &e) {
+        throw feq::SpecError(std::string("table: ") + e.what());
+      }
+      shape = feq::SubstrateShape::table(u, phi, file + " " + key);
+    } else {
+      throw feq::SpecError("unknown shape '" + style + "'; allowed: " + SHAPES);
+    }
+
+    while (iarg < args.size()) {
+      const std::string &kw = args[iarg++];
+      if (kw == "dir") {
+        if (iarg >= args.size()) throw feq::SpecError("dir: missing value; allowed: x, y, z");
+        const std::string &v = args[iarg++];
+        if (v == "x") idir = 0;
+        else if (v == "y") idir = 1;
+        else if (v == "z") idir = 2;
+        else throw feq::SpecError("dir: unknown value '" + v + "'; allowed: x, y, z");
+      } else if (kw == "drive") {
+        kdrive = value(iarg, "drive K");
+        vstage = value(iarg, "drive v");
+        if (!(kdrive > 0.0)) throw feq::SpecError("drive: K must be > 0 (got " + args[iarg - 2] + ")");
+        drive_flag = 1;
+      } else if (kw == "stage") {
+        stage0 = value(iarg, "stage X0");
+      } else if (kw == "reverse") {
+        if (iarg >= args.size()) throw feq::SpecError("reverse: missing value; allowed: periodic, break");
+        const std::string &v = args[iarg++];
+        if (v == "periodic") rev_break = 0;
+        else if (v == "break") rev_break = 1;
+        else throw feq::SpecError("reverse: unknown value '" + v + "'; allowed: periodic, break");
+      } else if (kw == "disorder") {
+        try {
+          disorder = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number);
+        } catch (const feq::SpecError &e) {
+          // the shared parser names its role 'stiffness': name this keyword
+          std::string msg = e.what();
+          if (msg.rfind("stiffness", 0) == 0) msg = "disorder" + msg.substr(9);
+          throw feq::SpecError(msg);
+        }
+        if (iarg >= args.size()) throw feq::SpecError("disorder: missing seed after " + disorder.text);
+        const std::string &tok = args[iarg++];
+        if (!utils::is_integer(tok) || (dseed = utils::bnumeric(FLERR, tok.c_str(), false, lmp)) <= 0)
+          throw feq::SpecError("disorder: seed must be a positive integer (got '" + tok + "')");
+      } else {
+        throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
+      }
+    }
+  } catch (const feq::SpecError &e) {
+    error->all(FLERR, "Fix eq/substrate {}", e.what());
+  }
+  if (!drive_flag && stage0 != 0.0)
+    error->all(FLERR, "Fix eq/substrate: stage needs the drive keyword (the stage holds the "
+                      "driving springs)");
+  if (idir == 2 && domain->dimension == 2)
+    error->all(FLERR, "Fix eq/substrate: dir z is not allowed in a 2d simulation; allowed: x, y");
+  if (group->dynamic[igroup])
+    error->all(FLERR, "Fix eq/substrate: group {} is dynamic; blocks need a static group",
+               group->names[igroup]);
+  const bigint nblocks = group->count(igroup);
+  if (nblocks == 0) error->all(FLERR, "Fix eq/substrate: group {} has no atoms", group->names[igroup]);
+
+  stage = stage0;
+
+  if (comm->me == 0)
+    utils::logmesg(lmp, "fix eq/substrate: {} blocks along {}; F_s = {} * phi(u), phi {}, "
+                        "max phi = {:.6g} at u = {:.6g}; reverse {}; {}{}\n",
+                   nblocks, "xyz"[idir], kc, shape.describe(), shape.max_phi(), shape.argmax_phi(),
+                   rev_break ? "break" : "periodic",
+                   drive_flag ? fmt::format("driving springs K = {} to a stage at {} moving at {}",
+                                            kdrive, stage0, vstage)
+                              : std::string("no driving springs"),
+                   disorder.dist ? "; disorder " + disorder.text : std::string());
+
+  restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  scalar_flag = 1;
+  vector_flag = 1;
+  size_vector = NVEC;
+  global_freq = 1;
+  extscalar = 1;
+  extvector = -1;
+  extlist = new int[NVEC]{0, 0, 0, 0, 0, 1, 1, 1, 1, 1};
+  peratom_flag = 1;
+  size_peratom_cols = NCOL;
+  peratom_freq = 1;
+  energy_global_flag = 1;
+  respa_level_support = 1;
+  maxexchange = NCOL;
+
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++) {
+    set_arrays(i);
+    if (atom->mask[i] & groupbit) init_block(i);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+FixEQSubstrate::~FixEQSubstrate()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(state);
+  delete[] extlist;
+}
+
+int FixEQSubstrate::setmask()
+{
+  int mask = 0;
+  mask |= POST_INTEGRATE;
+  mask |= POST_INTEGRATE_RESPA;
+  mask |= POST_FORCE;
+  mask |= POST_FORCE_RESPA;
+  mask |= MIN_POST_FORCE;
+  return mask;
+}
+
+void FixEQSubstrate::init()
+{
+  if (utils::strmatch(update->integrate_style, "^respa")) {
+    nlevels_respa = ((Respa *) update->integrate)->nlevels;
+    ilevel_respa = nlevels_respa - 1;
+    if (respa_level >= 0) ilevel_respa = MIN(respa_level, ilevel_respa);
+  }
+  jump_warned = 0;
+}
+
+void FixEQSubstrate::setup(int vflag)
+{
+  if (utils::strmatch(update->integrate_style, "^verlet"))
+    post_force(vflag);
+  else {
+    ((Respa *) update->integrate)->copy_flevel_f(ilevel_respa);
+    post_force_respa(vflag, ilevel_respa, 0);
+    ((Respa *) update->integrate)->copy_f_flevel(ilevel_respa);
+  }
+}
+
+void FixEQSubstrate::min_setup(int /*vflag*/)
+{
+  apply();
+}
+
+void FixEQSubstrate::post_force(int /*vflag*/)
+{
+  apply();
+}
+
+void FixEQSubstrate::post_force_respa(int vflag, int ilevel, int /*iloop*/)
+{
+  if (ilevel == ilevel_respa) post_force(vflag);
+}
+
+void FixEQSubstrate::min_post_force(int /*vflag*/)
+{
+  apply();
+}
+
+/* ----------------------------------------------------------------------
+   the stage advances with the positions, before the forces of the step
+   (a sum of v dt: a restarted run continues it bit for bit)
+------------------------------------------------------------------------- */
+
+void FixEQSubstrate::post_integrate()
+{
+  if (drive_flag) stage += vstage * update->dt;
+}
+
+// r-RESPA: once per outer step (update->dt is the outer time step)
+void FixEQSubstrate::post_integrate_respa(int ilevel, int /*iloop*/)
+{
+  if (ilevel == nlevels_respa - 1) post_integrate();
+}
+
+/* ----------------------------------------------------------------------
+   unwrapped coordinate of atom i along dir
+------------------------------------------------------------------------- */
+
+inline double FixEQSubstrate::unwrapped(int i) const
+{
+  const imageint img = atom->image[i];
+  if (domain->triclinic) {
+    double u[3];
+    domain->unmap(atom->x[i], img, u);
+    return u[idir];
+  }
+  int n;
+  if (idir == 0) n = (img & IMGMASK) - IMGMAX;
+  else if (idir == 1) n = (img >> IMGBITS & IMGMASK) - IMGMAX;
+  else n = (img >> IMG2BITS) - IMGMAX;
+  return atom->x[i][idir] + n * domain->prd[idir];
+}
+
+/* ----------------------------------------------------------------------
+   a block first seen in the group: its site is where it is now; its
+   quenched factor d is a pure function of (seed, atom ID)
+------------------------------------------------------------------------- */
+
+void FixEQSubstrate::init_block(int i)
+{
+  double *s = state[i];
+  s[SITE] = unwrapped(i);
+  s[DISP] = s[FSUB] = s[FDRIVE] = s[INTERACT] = 0.0;
+  s[KC] = kc;
+  s[ANCHOR] = 0.0;
+  s[DISORDER] = disorder.dist
+      ? disorder.dist->sample(feq::draw(dseed, atom->tag[i], 0, feq::STREAM_STIFFNESS))
+      : 1.0;
+}
+
+/* ----------------------------------------------------------------------
+   displacements u_i = x_i - site_i along dir (undoing a wrap of LAMMPS'
+   image counter, as fix eq/contacts does)
+------------------------------------------------------------------------- */
+
+void FixEQSubstrate::update_displacements()
+{
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const bool wrapfix = !domain->triclinic && domain->periodicity[idir];
+  const double wrap = 2.0 * IMGMAX * domain->prd[idir];
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double *const st = state[i];
+    if (st[DISORDER] == 0.0) init_block(i);
+    double u = unwrapped(i) - st[SITE];
+    if (wrapfix && std::fabs(u) > 0.5 * wrap) u -= wrap * std::round(u / wrap);
+    st[DISP] = u;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   F = -k_c d phi + K (X_s - u) along dir.  reverse periodic: phi(u mod
+   u_c) and the well origin a = u_c floor(u/u_c); reverse break: a moves
+   by u_c when the stretch r = u - a reaches u_c or -u_c, and the force is
+   -k_c d sgn(r) phi(|r|)
+------------------------------------------------------------------------- */
+
+void FixEQSubstrate::apply()
+{
+  double *const *const x = atom->x;
+  double *const *const f = atom->f;
+  const int *const mask = atom->mask;
+  const imageint *const image = atom->image;
+  const int nlocal = atom->nlocal;
+  const int d = idir;
+  const int bits = (d == 0) ? 0 : (d == 1 ? IMGBITS : IMG2BITS);
+  const double prd = domain->prd[d];
+  const bool triclinic = domain->triclinic;
+  const bool wrapfix = !triclinic && domain->periodicity[d];
+  const double wrap = 2.0 * IMGMAX * prd;
+  const double Xs = stage;
+  const double K = kdrive;
+  const double uc = shape.period();
+  // only during dynamics: a block that moves by more than half a period in
+  // one step skips parts of the substrate force (time step too large)
+  const bool check_jump = update->whichflag == 1 && update->setupflag == 0 && !jump_warned;
+  const double half = 0.5 * shape.period();
+  int jumped = 0;
+  tagint jump_tag = 0;
+  double jump_size = 0.0;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double *const st = state[i];
+    if (st[DISORDER] == 0.0) init_block(i);
+    double xu;
+    if (!triclinic) {
+      const int n = int((image[i] >> bits) & IMGMASK) - IMGMAX;
+      xu = x[i][d] + n * prd;
+    } else {
+      xu = unwrapped(i);
+    }
+    double u = xu - st[SITE];
+    if (wrapfix && std::fabs(u) > 0.5 * wrap) u -= wrap * std::round(u / wrap);
+    if (!std::isfinite(u))
+      error->one(FLERR,
+                 "Fix eq/substrate: displacement of block {} is {} (numerical instability: "
+                 "check the timestep against the stiffest force, k_c, K and the coupling, and the "
+                 "integrator)", atom->tag[i], u);
+    if (check_jump && !jumped && std::fabs(u - st[DISP]) > half) {
+      jumped = 1;
+      jump_tag = atom->tag[i];
+      jump_size = u - st[DISP];
+    }
+    double fs;
+    if (!rev_break) {
+      double n, r;
+      shape.reduce(u, n, r);
+      st[ANCHOR] = n * uc;
+      fs = -st[KC] * st[DISORDER] * shape.phi_in(r);
+    } else {
+      double a = st[ANCHOR];
+      double r = u - a;
+      if (!(std::fabs(r) < uc)) {
+        const double m = std::trunc(r / uc);    // whole periods slipped
+        a += m * uc;
+        r = u - a;
+        if (r >= uc) a += uc, r = u - a;        // rounding
+        if (r <= -uc) a -= uc, r = u - a;
+        st[ANCHOR] = a;
+      }
+      fs = r >= 0.0 ? -st[KC] * st[DISORDER] * shape.phi_in(r)
+                    : st[KC] * st[DISORDER] * shape.phi_in(-r);
+    }
+    const double fd = drive_flag ? K * (Xs - u) : 0.0;
+    f[i][d] += fs + fd;
+    st[DISP] = u;
+    st[FSUB] = fs;
+    st[FDRIVE] = fd;
+  }
+  ++neval;
+  if (jumped) {
+    jump_warned = 1;
+    error->warning(FLERR,
+                   "Fix eq/substrate: block {} moved by {} in one step, more than half the "
+                   "substrate period {}: the time step is too large to resolve F_s (step {})",
+                   jump_tag, jump_size, shape.period(), update->ntimestep);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   global output, reduced on demand (one Allreduce for all entries)
+------------------------------------------------------------------------- */
+
+double FixEQSubstrate::compute_scalar()
+{
+  reduce();
+  return global_sum[S_ESUB] + global_sum[S_EDRIVE];
+}
+
+double FixEQSubstrate::compute_vector(int n)
+{
+  switch (n) {
+    case V_F: return drive_flag ? kdrive * stage : 0.0;
+    case V_STAGE: return drive_flag ? stage : 0.0;
+    case V_VSTAGE: return drive_flag ? vstage : 0.0;
+  }
+  reduce();
+  const double count = global_sum[S_COUNT];
+  switch (n) {
+    case V_VEL: return count > 0.0 ? global_sum[S_VEL] / count : 0.0;
+    case V_DISP: return count > 0.0 ? global_sum[S_DISP] / count : 0.0;
+    case V_FSUB: return global_sum[S_FSUB];
+    case V_FDRIVE: return global_sum[S_FDRIVE];
+    case V_ESUB: return global_sum[S_ESUB];
+    case V_EDRIVE: return global_sum[S_EDRIVE];
+    case V_COUNT: return count;
+  }
+  return 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   sums over the blocks of the last force evaluation (velocities as they
+   are now, i.e. at the end of the step for thermo output); one Allreduce
+   serves all entries of that evaluation
+------------------------------------------------------------------------- */
+
+void FixEQSubstrate::reduce()
+{
+  if (reduced_eval == neval) return;
+  double local[NSUM] = {0.0};
+  const double *const *const v = atom->v;
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const double Xs = stage;
+  const double halfK = 0.5 * kdrive;
+  const double uc = shape.period(), W = shape.work();
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double *st = state[i];
+    const double u = st[DISP];
+    local[S_VEL] += v[i][idir];
+    local[S_DISP] += u;
+    local[S_FSUB] -= st[FSUB];
+    local[S_FDRIVE] += st[FDRIVE];
+    // elastic energy in the current well plus the work W of every net
+    // forward slip: continuous in u while no contact breaks backward
+    const double r = u - st[ANCHOR];
+    local[S_ESUB] += st[KC] * st[DISORDER] * (shape.potential_in(std::fabs(r)) + W * st[ANCHOR] / uc);
+    if (drive_flag) local[S_EDRIVE] += halfK * (u - Xs) * (u - Xs);
+    local[S_COUNT] += 1.0;
+  }
+  MPI_Allreduce(local, global_sum, NSUM, MPI_DOUBLE, MPI_SUM, world);
+  reduced_eval = neval;
+}
+
+/* ----------------------------------------------------------------------
+   global restart: the stage (position now, velocity) so that a restarted
+   run continues the driving protocol
+------------------------------------------------------------------------- */
+
+void FixEQSubstrate::write_restart(FILE *fp)
+{
+  const double list[3] = {stage, vstage, (double) drive_flag};
+  if (comm->me == 0) {
+    int size = 3 * sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 3, fp);
+  }
+}
+
+void FixEQSubstrate::restart(char *buf)
+{
+  const double *list = (const double *) buf;
+  if (!drive_flag) {
+    if (list[2] != 0.0 && comm->me == 0)
+      error->warning(FLERR, "Fix eq/substrate: the restart file has driving springs, this fix "
+                            "has none (no drive keyword): the stage is not restored");
+    return;
+  }
+  stage = list[0];
+  vstage = list[1];
+  if (comm->me == 0)
+    utils::logmesg(lmp, "fix eq/substrate: stage restored from the restart file: X_s = {}, "
+                        "v = {}\n", stage, vstage);
+}
+
+/* ----------------------------------------------------------------------
+   fix_modify ID kc GROUP value   k_c of the blocks in GROUP
+   fix_modify ID velocity v       stage velocity from now on
+------------------------------------------------------------------------- */
+
+int FixEQSubstrate::modify_param(int narg, char **arg)
+{
+  if (strcmp(arg[0], "kc") == 0) {
+    if (narg < 3)
+      error->all(FLERR, "Illegal fix_modify {} kc command: expected 'fix_modify {} kc GROUP value'",
+                 id, id);
+    const int jgroup = group->find(arg[1]);
+    if (jgroup < 0) error->all(FLERR, "Fix_modify {} kc: group {} does not exist", id, arg[1]);
+    const double value = utils::numeric(FLERR, arg[2], false, lmp);
+    if (!(value >= 0.0)) error->all(FLERR, "Fix_modify {} kc: value must be >= 0 (got {})", id, arg[2]);
+    const int jbit = group->bitmask[jgroup];
+    const int *mask = atom->mask;
+    for (int i = 0; i < atom->nlocal; i++)
+      if ((mask[i] & groupbit) && (mask[i] & jbit)) {
+        if (state[i][DISORDER] == 0.0) init_block(i);
+        state[i][KC] = value;
+      }
+    return 3;
+  }
+  if (strcmp(arg[0], "velocity") == 0) {
+    if (narg < 2)
+      error->all(FLERR, "Illegal fix_modify {} velocity command: expected 'fix_modify {} velocity v'",
+                 id, id);
+    if (!drive_flag)
+      error->all(FLERR, "Fix_modify {} velocity: fix {} has no stage (add the drive keyword)", id, id);
+    vstage = utils::numeric(FLERR, arg[1], false, lmp);
+    return 2;
+  }
+  return 0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixEQSubstrate::memory_usage()
+{
+  return (double) atom->nmax * NCOL * sizeof(double);
+}
+
+void FixEQSubstrate::grow_arrays(int nmax)
+{
+  memory->grow(state, nmax, NCOL, "eq/substrate:state");
+  array_atom = state;
+}
+
+void FixEQSubstrate::copy_arrays(int i, int j, int /*delflag*/)
+{
+  memcpy(state[j], state[i], NCOL * sizeof(double));
+}
+
+// a new atom is no block until it is first seen in the group
+void FixEQSubstrate::set_arrays(int i)
+{
+  for (int c = 0; c < NCOL; c++) state[i][c] = 0.0;
+}
+
+int FixEQSubstrate::pack_exchange(int i, double *buf)
+{
+  for (int c = 0; c < NCOL; c++) buf[c] = state[i][c];
+  return NCOL;
+}
+
+int FixEQSubstrate::unpack_exchange(int nlocal, double *buf)
+{
+  for (int c = 0; c < NCOL; c++) state[nlocal][c] = buf[c];
+  return NCOL;
+}
+
+int FixEQSubstrate::pack_restart(int i, double *buf)
+{
+  buf[0] = NCOL + 1;
+  for (int c = 0; c < NCOL; c++) buf[c + 1] = state[i][c];
+  return NCOL + 1;
+}
+
+void FixEQSubstrate::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  m++;
+  for (int c = 0; c < NCOL; c++) state[nlocal][c] = extra[nlocal][m++];
+}
+
+int FixEQSubstrate::size_restart(int /*nlocal*/)
+{
+  return NCOL + 1;
+}
+
+int FixEQSubstrate::maxsize_restart()
+{
+  return NCOL + 1;
+}
+
+/* ----------------------------------------------------------------------
+   access for pair eq/elastic
+------------------------------------------------------------------------- */
+
+void *FixEQSubstrate::extract(const char *name, int &dim)
+{
+  if (strcmp(name, "state") == 0) {
+    dim = 2;
+    return (void *) state;
+  }
+  if (strcmp(name, "dir") == 0) {
+    dim = 0;
+    return (void *) &idir;
+  }
+  if (strcmp(name, "kc") == 0) {
+    dim = 0;
+    return (void *) &kc;
+  }
+  return nullptr;
+}

@@ -1,0 +1,106 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: fix eq/substrate
+
+   fix ID group eq/substrate kc shape args keyword values ...
+
+   Each atom of the group is a lambda_c block of the FK-ME model (paper
+   Sec. V B): the substrate pulls it back with F_s(u) = k_c,n d_n phi(u),
+   u being its unwrapped displacement from its site along the sliding
+   direction and phi a periodic shape (sawtooth, smooth, or a table from
+   the master equation).  Optional driving springs K tie every block to a
+   stage moving with velocity v.  See doc/src/fix_eq_substrate.rst.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(eq/substrate,FixEQSubstrate);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_EQ_SUBSTRATE_H
+#define LMP_FIX_EQ_SUBSTRATE_H
+
+#include "fix.h"
+
+#include "eq_distribution.h"
+#include "eq_substrate.h"
+
+namespace LAMMPS_NS {
+
+class FixEQSubstrate : public Fix {
+ public:
+  FixEQSubstrate(class LAMMPS *, int, char **);
+  ~FixEQSubstrate() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void min_setup(int) override;
+  void post_integrate() override;
+  void post_integrate_respa(int, int) override;
+  void post_force(int) override;
+  void post_force_respa(int, int, int) override;
+  void min_post_force(int) override;
+  double compute_scalar() override;
+  double compute_vector(int) override;
+  int modify_param(int, char **) override;
+
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+  void *extract(const char *, int &) override;
+
+  // columns of the per-atom state (also the per-atom output array):
+  // displacement u, substrate force -k_c d phi, driving-spring force
+  // K (X_s - u), k_c of the block (set by fix_modify kc), quenched factor
+  // d, origin a of the block's current well (u - a is the stretch of its
+  // contacts; a / u_c counts its slips), site (unwrapped coordinate along
+  // dir where u = 0), field h of pair eq/elastic (force -h; 0 without)
+  enum { DISP, FSUB, FDRIVE, KC, DISORDER, ANCHOR, SITE, INTERACT, NCOL };
+
+  // displacements of all local blocks from the current positions (for
+  // pair eq/elastic, which couples them)
+  void update_displacements();
+
+ private:
+  double kc;            // default k_c of a block
+  feq::SubstrateShape shape;
+  int idir;
+  int ilevel_respa, nlevels_respa;
+  // backward motion: periodic prolongation of F_s, or the block's
+  // contacts break at u - a = -u_c as they do at +u_c (reverse break)
+  int rev_break;
+  // driving springs to the stage at X_s, advanced by v dt every step
+  int drive_flag;
+  double kdrive, vstage, stage;
+  // quenched disorder of the blocks' k_c (threshold force) factors d_n
+  feq::DistributionSpec disorder;
+  bigint dseed;
+  int jump_warned;    // a block moved more than half a period in one step
+
+  double **state;
+
+  // sums over the blocks (velocity, displacement, forces, energies, count)
+  enum { S_VEL, S_DISP, S_FSUB, S_FDRIVE, S_ESUB, S_EDRIVE, S_COUNT, NSUM };
+  double global_sum[NSUM];
+  bigint neval, reduced_eval;    // force evaluations; the one the sums are of
+  void reduce();
+
+  void init_block(int i);
+  void apply();
+  inline double unwrapped(int i) const;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,181 @@
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package: substrate force of an FK-ME block (eq_substrate.h)
+------------------------------------------------------------------------- */
+
+#include "eq_substrate.h"
+
+#include "eq_distribution.h"    // SpecError
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace feq {
+
+namespace {
+std::string num(double v)
+{
+  std::ostringstream s;
+  s << std::setprecision(10) << v;
+  return s.str();
+}
+}    // namespace
+
+SubstrateShape SubstrateShape::sawtooth(double uc)
+{
+  if (!(uc > 0.0) || !std::isfinite(uc)) throw SpecError("sawtooth: need uc > 0 (got " + num(uc) + ")");
+  SubstrateShape s;
+  s.kind_ = SAWTOOTH;
+  s.uc = uc;
+  s.text = "sawtooth (uc = " + num(uc) + ")";
+  s.finish();
+  return s;
+}
+
+SubstrateShape SubstrateShape::smooth(double uc)
+{
+  if (!(uc > 0.0) || !std::isfinite(uc)) throw SpecError("smooth: need uc > 0 (got " + num(uc) + ")");
+  SubstrateShape s;
+  s.kind_ = SMOOTH;
+  s.uc = uc;
+  s.text = "smooth (uc = " + num(uc) + ")";
+  s.finish();
+  return s;
+}
+
+SubstrateShape SubstrateShape::table(const std::vector<double> &v, const std::vector<double> &phi,
+                                     const std::string &label)
+{
+  const size_t n = v.size();
+  if (n < 2 || phi.size() != n)
+    throw SpecError("table " + label + ": need at least 2 points (u, phi)");
+  if (v[0] != 0.0)
+    throw SpecError("table " + label + ": the first point must be u = 0 (got " + num(v[0]) + ")");
+  for (size_t k = 1; k < n; ++k)
+    if (!(v[k] > v[k - 1]))
+      throw SpecError("table " + label + ": u must increase (point " + std::to_string(k + 1) +
+                      ": u = " + num(v[k]) + " after " + num(v[k - 1]) + ")");
+  for (size_t k = 0; k < n; ++k)
+    if (!std::isfinite(phi[k]))
+      throw SpecError("table " + label + ": phi at point " + std::to_string(k + 1) + " is not finite");
+  SubstrateShape s;
+  s.kind_ = TABLE;
+  s.uc = v.back();
+  s.tv = v;
+  s.tphi = phi;
+  s.tV.assign(n, 0.0);
+  for (size_t k = 1; k < n; ++k)
+    s.tV[k] = s.tV[k - 1] + 0.5 * (phi[k] + phi[k - 1]) * (v[k] - v[k - 1]);
+  s.text = "table " + label + " (uc = " + num(s.uc) + ", " + std::to_string(n) + " points)";
+  s.finish();
+  return s;
+}
+
+void SubstrateShape::finish()
+{
+  W = V0(uc);
+  if (kind_ == SAWTOOTH) {
+    phimax = uc;    // supremum, approached at the end of the period
+    vmax = uc;
+  } else if (kind_ == TABLE) {
+    const auto it = std::max_element(tphi.begin(), tphi.end());
+    phimax = *it;
+    vmax = tv[it - tphi.begin()];
+  } else {
+    // fine scan, then golden-section refinement around the best point
+    const int n = 4000;
+    int best = 0;
+    double pb = phi0(0.0);
+    for (int k = 1; k < n; ++k) {
+      const double p = phi0(uc * k / n);
+      if (p > pb) pb = p, best = k;
+    }
+    double a = uc * std::max(0, best - 1) / n, b = uc * std::min(n - 1, best + 1) / n;
+    const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int it = 0; it < 100 && b - a > 1e-15 * uc; ++it) {
+      const double c = b - gr * (b - a), d = a + gr * (b - a);
+      if (phi0(c) > phi0(d)) b = d;
+      else a = c;
+    }
+    vmax = 0.5 * (a + b);
+    phimax = std::max(pb, phi0(vmax));
+  }
+}
+
+void SubstrateShape::reduce(double u, double &n, double &r) const
+{
+  n = std::floor(u / uc);
+  r = u - n * uc;
+  // rounding can put r at u_c (or just below 0): keep 0 <= r < u_c
+  if (r >= uc) {
+    r -= uc;
+    n += 1.0;
+  }
+  if (r < 0.0) r = 0.0;
+}
+
+double SubstrateShape::phi0(double r) const
+{
+  switch (kind_) {
+    case SAWTOOTH: return r;
+    case SMOOTH: return std::tanh(r) + 1.5 * std::exp(-r) * std::sin(3.0 * r);
+    default: {
+      const size_t k = std::upper_bound(tv.begin(), tv.end(), r) - tv.begin();
+      if (k == 0) return tphi.front();
+      if (k >= tv.size()) return tphi.back();
+      const double t = (r - tv[k - 1]) / (tv[k] - tv[k - 1]);
+      return tphi[k - 1] + t * (tphi[k] - tphi[k - 1]);
+    }
+  }
+}
+
+double SubstrateShape::V0(double r) const
+{
+  switch (kind_) {
+    case SAWTOOTH: return 0.5 * r * r;
+    case SMOOTH: {
+      // int_0^r tanh = log cosh r (in a form that does not overflow);
+      // int_0^r e^{-s} sin 3s ds = [3 - e^{-r} (sin 3r + 3 cos 3r)] / 10
+      const double lc = r + std::log1p(std::exp(-2.0 * r)) - std::log(2.0);
+      return lc + 0.15 * (3.0 - std::exp(-r) * (std::sin(3.0 * r) + 3.0 * std::cos(3.0 * r)));
+    }
+    default: {
+      const size_t k = std::upper_bound(tv.begin(), tv.end(), r) - tv.begin();
+      if (k == 0) return 0.0;
+      if (k >= tv.size()) return tV.back();
+      const double h = r - tv[k - 1];
+      const double slope = (tphi[k] - tphi[k - 1]) / (tv[k] - tv[k - 1]);
+      return tV[k - 1] + h * (tphi[k - 1] + 0.5 * slope * h);
+    }
+  }
+}
+
+double SubstrateShape::phi(double u) const
+{
+  double n, r;
+  reduce(u, n, r);
+  return phi0(r);
+}
+
+double SubstrateShape::potential(double u) const
+{
+  double n, r;
+  reduce(u, n, r);
+  return n * W + V0(r);
+}
+
+std::string substrate_table_text(const std::string &keyword, const std::vector<double> &v,
+                                 const std::vector<double> &phi, const std::string &comment)
+{
+  std::ostringstream out;
+  out << std::setprecision(12);
+  std::istringstream lines(comment);
+  std::string line;
+  while (std::getline(lines, line)) out << "# " << line << "\n";
+  out << "\n" << keyword << "\nN " << v.size() << "\n\n";
+  for (size_t k = 0; k < v.size(); ++k) out << k + 1 << " " << v[k] << " " << phi[k] << "\n";
+  return out.str();
+}
+
+}    // namespace feq

@@ -1,0 +1,78 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   FRICTION-EQ package: substrate force of a lambda_c block in the FK-ME
+   model (paper Sec. V B).  LAMMPS-free.
+
+   The force of the substrate on a block displaced by u from its site is
+   F_s(u) = k_c phi(u), with a shape phi given on one period [0, u_c) and
+   prolonged periodically (the block's contacts all re-form after a slip
+   of u_c):
+
+     sawtooth  phi(v) = v                                 (Eq. crack.eqi08)
+     smooth    phi(v) = tanh(v) + 1.5 exp(-v) sin(3 v)    (Fig. crack.A03ab)
+     table     phi linear between tabulated points (v_k, phi_k) on [0, u_c],
+               e.g. F(X)/(N k_c) of the master equation of a rigid block
+
+   The potential V(u) = int_0^u phi is continuous; it grows by the work
+   W = int_0^{u_c} phi per period (the energy the slip dissipates), so
+   F_s = k_c dV/du everywhere except at the jumps of phi at multiples of
+   u_c.
+------------------------------------------------------------------------- */
+
+#ifndef FEQ_SUBSTRATE_H
+#define FEQ_SUBSTRATE_H
+
+#include <string>
+#include <vector>
+
+namespace feq {
+
+class SubstrateShape {
+ public:
+  enum Kind { SAWTOOTH, SMOOTH, TABLE };
+
+  static SubstrateShape sawtooth(double uc);
+  static SubstrateShape smooth(double uc);
+  // points v_0 = 0 < v_1 < ... < v_{n-1} = u_c with values phi_k; throws
+  // SpecError (eq_distribution.h) naming the label on bad points
+  static SubstrateShape table(const std::vector<double> &v, const std::vector<double> &phi,
+                              const std::string &label);
+
+  Kind kind() const { return kind_; }
+  double period() const { return uc; }
+  std::string describe() const { return text; }
+
+  // phi(u) for any u (periodic); phi jumps at u = n u_c (value from the right)
+  double phi(double u) const;
+  // V(u) = int_0^u phi (continuous, n W + V(u - n u_c))
+  double potential(double u) const;
+  // index n of the period of u and the position r = u - n u_c within it,
+  // 0 <= r < u_c (also where rounding puts u - floor(u/u_c) u_c at u_c)
+  void reduce(double u, double &n, double &r) const;
+  // phi and its integral from 0 within one period, 0 <= r <= u_c
+  double phi_in(double r) const { return phi0(r); }
+  double potential_in(double r) const { return V0(r); }
+  // work per period W = V(u_c)
+  double work() const { return W; }
+  // largest phi on a period (the block's threshold force / k_c) and where
+  double max_phi() const { return phimax; }
+  double argmax_phi() const { return vmax; }
+
+ private:
+  Kind kind_ = SAWTOOTH;
+  double uc = 1.0, W = 0.0, phimax = 0.0, vmax = 0.0;
+  std::string text;
+  std::vector<double> tv, tphi, tV;    // table points and V at them
+
+  double phi0(double r) const;    // on [0, u_c)
+  double V0(double r) const;      // int_0^r phi0
+  void finish();                  // W, max
+};
+
+// The table section written for a substrate shape: 'KEYWORD', 'N n', blank,
+// then "k v_k phi_k" lines (the format fix eq/contacts reads for thresholds)
+std::string substrate_table_text(const std::string &keyword, const std::vector<double> &v,
+                                 const std::vector<double> &phi, const std::string &comment);
+
+}    // namespace feq
+
+#endif
