@@ -17,6 +17,7 @@
 #include "error.h"
 #include "group.h"
 #include "memory.h"
+#include "modify.h"
 #include "respa.h"
 #include "update.h"
 #include "utils.h"
@@ -31,7 +32,7 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 namespace {
-const char *KEYWORDS = "dir, drive, stage, reverse, disorder";
+const char *KEYWORDS = "dir, drive, stage, reverse, crossing, disorder";
 const char *SHAPES = "sawtooth, smooth, table";
 // global vector: f = K X_s, X_s, v_stage, <v>, <u>, sum F_s, sum drive, E_sub, E_drive, N
 enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE, V_COUNT, NVEC };
@@ -40,9 +41,9 @@ enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE
 /* ---------------------------------------------------------------------- */
 
 FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), idir(0), ilevel_respa(0), nlevels_respa(0), rev_break(0), drive_flag(0), kdrive(0.0),
+    Fix(lmp, narg, arg), idir(0), ilevel_respa(0), nlevels_respa(0), rev_break(0), exact(1), window(0.5), drive_flag(0), kdrive(0.0),
     vstage(0.0), stage(0.0), dseed(0), jump_warned(0), state(nullptr), neval(0),
-    reduced_eval(-1)
+    reduced_eval(-1), neval_step(-1)
 {
   if (narg < 5)
     error->all(FLERR, "Illegal fix eq/substrate command: expected 'fix ID group eq/substrate kc "
@@ -104,6 +105,12 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
         drive_flag = 1;
       } else if (kw == "stage") {
         stage0 = value(iarg, "stage X0");
+      } else if (kw == "crossing") {
+        if (iarg >= args.size()) throw feq::SpecError("crossing: missing value; allowed: exact, step");
+        const std::string &v = args[iarg++];
+        if (v == "exact") exact = 1;
+        else if (v == "step") exact = 0;
+        else throw feq::SpecError("crossing: unknown value '" + v + "'; allowed: exact, step");
       } else if (kw == "reverse") {
         if (iarg >= args.size()) throw feq::SpecError("reverse: missing value; allowed: periodic, break");
         const std::string &v = args[iarg++];
@@ -145,9 +152,9 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
 
   if (comm->me == 0)
     utils::logmesg(lmp, "fix eq/substrate: {} blocks along {}; F_s = {} * phi(u), phi {}, "
-                        "max phi = {:.6g} at u = {:.6g}; reverse {}; {}{}\n",
+                        "max phi = {:.6g} at u = {:.6g}; reverse {}; crossing {}; {}{}\n",
                    nblocks, "xyz"[idir], kc, shape.describe(), shape.max_phi(), shape.argmax_phi(),
-                   rev_break ? "break" : "periodic",
+                   rev_break ? "break" : "periodic", exact ? "exact" : "step",
                    drive_flag ? fmt::format("driving springs K = {} to a stage at {} moving at {}",
                                             kdrive, stage0, vstage)
                               : std::string("no driving springs"),
@@ -210,6 +217,19 @@ void FixEQSubstrate::init()
     if (respa_level >= 0) ilevel_respa = MIN(respa_level, ilevel_respa);
   }
   jump_warned = 0;
+
+  // the force window of the integrator (crossing exact): first-order
+  // overdamped fix brownian* applies F(x_n) over [t_n, t_n+1]; the
+  // velocity-Verlet family over [t_n+1/2, t_n+3/2]
+  int brownian = 0;
+  for (int i = 0; i < modify->nfix; i++)
+    if (utils::strmatch(modify->fix[i]->style, "^brownian")) brownian = 1;
+  const double w = brownian ? 1.0 : 0.5;
+  if (exact && w != window && comm->me == 0)
+    utils::logmesg(lmp, "fix eq/substrate: crossings corrected for a force window of {} "
+                        "({} integrator)\n", w == 1.0 ? "[t_n, t_n+1]" : "[t_n+1/2, t_n+3/2]",
+                   brownian ? "overdamped fix brownian" : "velocity-Verlet");
+  window = w;
 }
 
 void FixEQSubstrate::setup(int vflag)
@@ -296,31 +316,35 @@ void FixEQSubstrate::init_block(int i)
 }
 
 /* ----------------------------------------------------------------------
-   displacements u_i = x_i - site_i along dir (undoing a wrap of LAMMPS'
+   displacement u_i = x_i - site_i along dir (undoing a wrap of LAMMPS'
    image counter, as fix eq/contacts does)
 ------------------------------------------------------------------------- */
 
-void FixEQSubstrate::update_displacements()
+double FixEQSubstrate::displacement(int i)
 {
-  const int *const mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  const bool wrapfix = !domain->triclinic && domain->periodicity[idir];
-  const double wrap = 2.0 * IMGMAX * domain->prd[idir];
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    double *const st = state[i];
-    if (st[DISORDER] == 0.0) init_block(i);
-    double u = unwrapped(i) - st[SITE];
-    if (wrapfix && std::fabs(u) > 0.5 * wrap) u -= wrap * std::round(u / wrap);
-    st[DISP] = u;
+  if (state[i][DISORDER] == 0.0) init_block(i);
+  double u = unwrapped(i) - state[i][SITE];
+  if (!domain->triclinic && domain->periodicity[idir]) {
+    const double wrap = 2.0 * IMGMAX * domain->prd[idir];
+    if (std::fabs(u) > 0.5 * wrap) u -= wrap * std::round(u / wrap);
   }
+  return u;
 }
 
 /* ----------------------------------------------------------------------
    F = -k_c d phi + K (X_s - u) along dir.  reverse periodic: phi(u mod
    u_c) and the well origin a = u_c floor(u/u_c); reverse break: a moves
    by u_c when the stretch r = u - a reaches u_c or -u_c, and the force is
-   -k_c d sgn(r) phi(|r|)
+   -k_c d sgn(r) phi(|r|).
+
+   crossing exact: F_s jumps by J = +-k_c d (phi(u_c) - phi(0)) where a
+   block passes the end of its well.  A time step that crosses it at the
+   fraction theta of the step (from the positions before and after, linear
+   in between) gave the block the force of one side for the whole window
+   the integrator applies a force over: [t_n, t_n+1] for fix brownian
+   (w = 1), [t_n+1/2, t_n+3/2] for velocity-Verlet integrators (w = 1/2).
+   The missing impulse (w - theta) J dt is added to the force of this step,
+   so the crossing no longer costs an error of order dt.
 ------------------------------------------------------------------------- */
 
 void FixEQSubstrate::apply()
@@ -339,10 +363,14 @@ void FixEQSubstrate::apply()
   const double Xs = stage;
   const double K = kdrive;
   const double uc = shape.period();
-  // only during dynamics: a block that moves by more than half a period in
-  // one step skips parts of the substrate force (time step too large)
-  const bool check_jump = update->whichflag == 1 && update->setupflag == 0 && !jump_warned;
-  const double half = 0.5 * shape.period();
+  const double dphi = shape.phi_in(uc) - shape.phi_in(0.0);
+  // only during dynamics, where the last evaluation was the previous step
+  const bool dynamics = update->whichflag == 1 && update->setupflag == 0;
+  const bool correct = dynamics && exact && neval_step == update->ntimestep - 1;
+  // a block that moves by more than half a period in one step skips parts
+  // of the substrate force (time step too large)
+  const bool check_jump = dynamics && !jump_warned;
+  const double half = 0.5 * uc;
   int jumped = 0;
   tagint jump_tag = 0;
   double jump_size = 0.0;
@@ -365,19 +393,22 @@ void FixEQSubstrate::apply()
                  "Fix eq/substrate: displacement of block {} is {} (numerical instability: "
                  "check the timestep against the stiffest force, k_c, K and the coupling, and the "
                  "integrator)", atom->tag[i], u);
-    if (check_jump && !jumped && std::fabs(u - st[DISP]) > half) {
+    const double u_old = st[DISP];
+    const double a_old = st[ANCHOR];
+    if (check_jump && !jumped && std::fabs(u - u_old) > half) {
       jumped = 1;
       jump_tag = atom->tag[i];
-      jump_size = u - st[DISP];
+      jump_size = u - u_old;
     }
+    const double kd = st[KC] * st[DISORDER];
     double fs;
     if (!rev_break) {
       double n, r;
       shape.reduce(u, n, r);
       st[ANCHOR] = n * uc;
-      fs = -st[KC] * st[DISORDER] * shape.phi_in(r);
+      fs = -kd * shape.phi_in(r);
     } else {
-      double a = st[ANCHOR];
+      double a = a_old;
       double r = u - a;
       if (!(std::fabs(r) < uc)) {
         const double m = std::trunc(r / uc);    // whole periods slipped
@@ -387,8 +418,19 @@ void FixEQSubstrate::apply()
         if (r <= -uc) a -= uc, r = u - a;
         st[ANCHOR] = a;
       }
-      fs = r >= 0.0 ? -st[KC] * st[DISORDER] * shape.phi_in(r)
-                    : st[KC] * st[DISORDER] * shape.phi_in(-r);
+      fs = r >= 0.0 ? -kd * shape.phi_in(r) : kd * shape.phi_in(-r);
+    }
+    // the well changed: one impulse correction per boundary passed
+    if (correct && st[ANCHOR] != a_old && u != u_old) {
+      const double sign = st[ANCHOR] > a_old ? 1.0 : -1.0;
+      const double first = rev_break ? a_old + sign * uc : (sign > 0.0 ? a_old + uc : a_old);
+      const long nb = std::lround(std::fabs(st[ANCHOR] - a_old) / uc);
+      for (long k = 0; k < nb; ++k) {
+        const double c = first + sign * k * uc;
+        double theta = (c - u_old) / (u - u_old);
+        theta = theta < 0.0 ? 0.0 : (theta > 1.0 ? 1.0 : theta);
+        fs += (window - theta) * sign * kd * dphi;
+      }
     }
     const double fd = drive_flag ? K * (Xs - u) : 0.0;
     f[i][d] += fs + fd;
@@ -397,6 +439,7 @@ void FixEQSubstrate::apply()
     st[FDRIVE] = fd;
   }
   ++neval;
+  neval_step = update->ntimestep;
   if (jumped) {
     jump_warned = 1;
     error->warning(FLERR,

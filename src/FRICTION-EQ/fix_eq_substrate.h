@@ -67,9 +67,10 @@ class FixEQSubstrate : public Fix {
   // dir where u = 0), field h of pair eq/elastic (force -h; 0 without)
   enum { DISP, FSUB, FDRIVE, KC, DISORDER, ANCHOR, SITE, INTERACT, NCOL };
 
-  // displacements of all local blocks from the current positions (for
-  // pair eq/elastic, which couples them)
-  void update_displacements();
+  // displacement of local atom i in the group from its current position
+  // (for pair eq/elastic, which couples the blocks; the state keeps the
+  // displacement of the last force evaluation of this fix)
+  double displacement(int i);
 
  private:
   double kc;            // default k_c of a block
@@ -79,6 +80,11 @@ class FixEQSubstrate : public Fix {
   // backward motion: periodic prolongation of F_s, or the block's
   // contacts break at u - a = -u_c as they do at +u_c (reverse break)
   int rev_break;
+  // crossing exact: impulse correction where a block passes the end of its
+  // well; window: where in the step the integrator applies a force (1: fix
+  // brownian's [t_n, t_n+1], 1/2: velocity Verlet's [t_n+1/2, t_n+3/2])
+  int exact;
+  double window;
   // driving springs to the stage at X_s, advanced by v dt every step
   int drive_flag;
   double kdrive, vstage, stage;
@@ -93,6 +99,7 @@ class FixEQSubstrate : public Fix {
   enum { S_VEL, S_DISP, S_FSUB, S_FDRIVE, S_ESUB, S_EDRIVE, S_COUNT, NSUM };
   double global_sum[NSUM];
   bigint neval, reduced_eval;    // force evaluations; the one the sums are of
+  bigint neval_step;             // time step of the last force evaluation
   void reduce();
 
   void init_block(int i);

@@ -329,9 +329,11 @@ void PairEQElastic::load_stretches()
           ? st[i][FixEQContacts::STRETCH]
           : NOT_A_CONTACT;
   } else {
+    // displacements from the current positions (the fix's state holds
+    // those of its last force evaluation, the step before)
     const int groupbit = sub->groupbit;
     for (int i = 0; i < nlocal; i++)
-      sx[i] = (mask[i] & groupbit) ? st[i][FixEQSubstrate::DISP] : NOT_A_CONTACT;
+      sx[i] = (mask[i] & groupbit) ? sub->displacement(i) : NOT_A_CONTACT;
   }
   comm_mode = COMM_STRETCH;
   comm->forward_comm_pair(this);
@@ -460,7 +462,6 @@ void PairEQElastic::compute(int eflag, int vflag)
     // rerun; always with fix eq/substrate): stretches or displacements
     // from the current positions, no breaking
     if (fix) fix->update_stretches();
-    else sub->update_displacements();
     field();
   }
   fresh = 0;

@@ -78,7 +78,7 @@ TEST_F(EQSubstrateErrors, Arguments)
                fix("1.0 smooth one"););
   TEST_FAILURE(".*ERROR: Fix eq/substrate sawtooth uc: missing value.*", fix("1.0 sawtooth"););
   TEST_FAILURE(".*ERROR: Fix eq/substrate unknown keyword 'speed'; allowed: dir, drive, stage, "
-               "reverse, disorder.*",
+               "reverse, crossing, disorder.*",
                fix("1.0 sawtooth 1.0 speed 1"););
   TEST_FAILURE(".*ERROR: Fix eq/substrate dir: unknown value 'w'; allowed: x, y, z.*",
                fix("1.0 sawtooth 1.0 dir w"););
@@ -92,6 +92,8 @@ TEST_F(EQSubstrateErrors, Arguments)
                fix("1.0 sawtooth 1.0 stage 3.0"););
   TEST_FAILURE(".*ERROR: Fix eq/substrate reverse: unknown value 'back'; allowed: periodic, break.*",
                fix("1.0 sawtooth 1.0 reverse back"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate crossing: unknown value 'late'; allowed: exact, step.*",
+               fix("1.0 sawtooth 1.0 crossing late"););
   TEST_FAILURE(".*ERROR: Fix eq/substrate disorder uniform: need 0 < lo < hi \\(got lo = 1.1, "
                "hi = 0.9\\).*",
                fix("1.0 sawtooth 1.0 disorder uniform 1.1 0.9 5"););

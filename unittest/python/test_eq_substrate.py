@@ -1,0 +1,340 @@
+"""fix eq/substrate (paper Sec. V B): the FK-ME chain in LAMMPS against
+independent references.
+
+* one block pulled over the sawtooth: a high-accuracy ODE solution with the
+  jumps located as events (scipy DOP853); crossing exact makes the error of
+  LAMMPS' integrators a smooth O(dt) series;
+* the static chain: force balance solved by linear algebra;
+* energy conservation of the undamped chain (fix_modify energy yes);
+* the kink (frictional crack) velocity: the exact travelling wave of the
+  discrete overdamped chain (fkme.vk_discrete) and the continuum law of the
+  paper, Eq. crack.eqi04; pinning at the exact discrete depinning force;
+  nucleation at the static threshold of the weak blocks;
+* the substrate force of every shape (and an eq-me table) at prescribed
+  displacements; quenched disorder statistics;
+* 1 vs 2 MPI ranks and restart continuity, bonds vs pair eq/elastic.
+"""
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from eqtools import RunError, fkme, run_eqme, run_lammps
+
+INPUTS = Path(__file__).resolve().parent / "inputs"
+CHAIN = INPUTS / "in.substrate-chain"
+BLOCK = INPUTS / "in.substrate-block"
+POINTS = INPUTS / "in.substrate-points"
+
+KC, UC, K, ETA = 1.0, 1.0, 0.07, 100.0
+
+
+# ---------------------------------------------------------------- helpers
+def chain(tmp_path, nprocs=1, **var):
+    """Run in.substrate-chain with the given variables in tmp_path."""
+    return run_lammps(CHAIN, variables=var, nprocs=nprocs, cwd=tmp_path)
+
+
+def crossing_times(track, ids, uc=UC):
+    """Times at which the tracked blocks (x columns of track.dat, sites
+    id - 1) first pass u = uc, linear between the steps."""
+    t = track[:, 0]
+    out = []
+    for k, ident in enumerate(ids):
+        u = track[:, k + 1] - (ident - 1)
+        j = np.nonzero(u >= uc)[0]
+        if len(j) == 0 or j[0] == 0:
+            out.append(np.nan)
+            continue
+        j = j[0]
+        out.append(t[j - 1] + (uc - u[j - 1]) / (u[j] - u[j - 1]) * (t[j] - t[j - 1]))
+    return np.array(out)
+
+
+def read_dump_last(path):
+    steps, cols = fkme.read_dump(path)
+    return {k: v[-1] for k, v in cols.items() if k != "box"}
+
+
+# ------------------------------------------------------- one block, exact
+def block_reference(T, inertia, dt_out=0.25):
+    """u(t) of one block, gamma = 1, K = 0.5, v = 0.2, reverse break, by
+    DOP853 with the ends of the wells as terminal events (rtol 1e-12)."""
+    from scipy.integrate import solve_ivp
+    kc, uc, Kd, v, gam, m = 1.0, 1.0, 0.5, 0.2, 1.0, 1.0
+    grid = np.arange(0.0, T + 1e-9, dt_out)
+    out = np.full(grid.shape, np.nan)
+    a, t, y = 0.0, 0.0, [0.0, 0.0] if inertia else [0.0]
+    while t < T - 1e-12:
+        def rhs(tt, yy, a=a):
+            r = yy[0] - a
+            F = -kc * math.copysign(abs(r), r) + Kd * (v * tt - yy[0])
+            return [yy[1], (F - gam * yy[1]) / m] if inertia else [F / gam]
+        up = lambda tt, yy, a=a: yy[0] - a - uc
+        dn = lambda tt, yy, a=a: yy[0] - a + uc
+        up.terminal = dn.terminal = True
+        up.direction, dn.direction = 1, -1
+        sol = solve_ivp(rhs, (t, T), y, method="DOP853", rtol=1e-12, atol=1e-14,
+                        events=[up, dn], dense_output=True)
+        sel = (grid >= t) & (grid <= sol.t[-1])
+        out[sel] = sol.sol(grid[sel])[0]
+        if sol.status == 1:
+            a += uc if len(sol.t_events[0]) else -uc
+        t, y = sol.t[-1], list(sol.y[:, -1])
+    return grid, out
+
+
+@pytest.mark.parametrize("integ", ["brownian", "nve"])
+def test_single_block_converges_at_first_order(tmp_path, integ):
+    """Stick-slip of one block (four slips in T = 60).  With crossing exact
+    the error of fix brownian (Euler) and of fix nve + fix viscous (drag at
+    the half-step velocity) is a smooth first-order series in dt: halving
+    dt halves it, and Richardson's 2 u(dt/2) - u(dt) removes it.  Without
+    the correction (crossing step) the time at which a slip starts is off
+    by a random fraction of dt and the error is not such a series."""
+    T = 60.0
+    grid, ref = block_reference(T, inertia=(integ == "nve"))
+    assert np.all(np.isfinite(ref)) and ref[-1] > 3.0    # several slips
+    res = {}
+    for cross in ("exact", "step"):
+        for dt in (0.05, 0.025, 0.0125):
+            out = tmp_path / f"b_{cross}_{dt}.dat"
+            run_lammps(BLOCK, {"integ": integ, "dt": dt, "cross": cross, "T": T,
+                               "every": round(0.25 / dt), "out": out.name}, cwd=tmp_path)
+            d = np.loadtxt(out)
+            assert np.allclose(d[:, 0], grid)
+            res[cross, dt] = d[:, 1]
+    u = ref
+    err = {k: np.abs(v - u).max() for k, v in res.items()}
+    # first order, regular: each halving of dt halves the error (+-15 %)
+    for dt in (0.05, 0.025):
+        assert 1.7 < err["exact", dt] / err["exact", dt / 2] < 2.3, err
+    # the first-order term is a smooth function of dt: extrapolation removes it
+    rich = np.abs(2 * res["exact", 0.0125] - res["exact", 0.025] - u).max()
+    assert rich < 0.2 * err["exact", 0.0125], (rich, err)
+    rich_step = np.abs(2 * res["step", 0.0125] - res["step", 0.025] - u).max()
+    assert rich_step > 2 * rich, (rich_step, rich)
+
+
+# ------------------------------------------------------- static chain
+def test_static_chain_is_the_linear_force_balance(tmp_path):
+    """Minimized chain with two weak blocks and the stage at f = 0.9: the
+    displacements solve (kc_n + K) u_n - g (u_n+1 + u_n-1 - 2 u_n) = f."""
+    N, g, f = 40, 25.0, 0.9
+    chain(tmp_path, N=N, g=g, f0=f, weak=20, kweak=0.5, minimize=1, steps=0, every=1,
+          dumpfile="static.dump")
+    d = read_dump_last(tmp_path / "static.dump")
+    u = d["f_sub[1]"]
+    kc = np.full(N, KC)
+    kc[19:21] = 0.5
+    A = np.diag(kc + K + 2 * g) - g * np.roll(np.eye(N), 1, 1) - g * np.roll(np.eye(N), -1, 1)
+    u_ref = np.linalg.solve(A, np.full(N, f))
+    assert np.abs(u - u_ref).max() < 1e-9
+    assert u[19] == pytest.approx(u_ref.max(), abs=1e-9)
+    assert np.all(u < UC)    # nobody slipped
+
+
+# ------------------------------------------------------- energy
+def test_energy_is_conserved_by_the_undamped_chain(tmp_path):
+    """Undamped chain (fix nve, no viscous), smooth shape with reverse break
+    (smooth at u = 0), drive springs at rest, random displacements in
+    [-0.3, 0.3]: kinetic + pair + substrate + drive energy is conserved
+    with the O(dt^2) fluctuation of velocity Verlet."""
+    dev = {}
+    for dt in (0.02, 0.01):
+        out = chain(tmp_path, N=60, g=5.0, f0=0.0, shape="smooth", rev="break", integ="nve",
+                    eta=0.0, dt=dt, steps=round(20.0 / dt), init="random", amp=0.3)
+        rows = [l.split() for l in out.splitlines()]
+        hdr = next(i for i, r in enumerate(rows) if r[:2] == ["Step", "Time"])
+        data = []
+        for r in rows[hdr + 1:]:
+            try:
+                data.append([float(x) for x in r])
+            except ValueError:
+                break
+        data = np.array(data)
+        etot = data[:, 7]
+        assert data[:, 6].max() > 0.1 * abs(etot[0])    # energy is exchanged
+        dev[dt] = np.abs(etot - etot[0]).max() / abs(etot[0])
+    print(dev)
+    assert dev[0.01] < 1e-3
+    assert 3.0 < dev[0.02] / dev[0.01] < 5.0, dev
+
+
+# ------------------------------------------------------- kinks
+def kink_velocity(tmp_path, f, g, dt, N=200, seed=(80, 120), track=151, **extra):
+    """Velocity of the right kink from the crossing times of blocks
+    track .. track+4 (30 sites beyond the seed: steady to < 1e-4)."""
+    ids = list(range(track, track + 5))
+    vd = fkme.vk_discrete(f, g, KC, UC, K, 1.0, ETA)
+    T = (track + 5 - seed[1]) / vd * 1.15 + 200.0
+    chain(tmp_path, N=N, g=g, f0=f, dt=dt, steps=round(T / dt), seed0=seed[0], seed1=seed[1],
+          track=track, trackfile=f"track_{f}_{dt}.dat", **extra)
+    tc = crossing_times(np.loadtxt(tmp_path / f"track_{f}_{dt}.dat"), ids)
+    assert np.all(np.isfinite(tc)), tc
+    return (ids[-1] - ids[0]) / (tc[-1] - tc[0])
+
+
+@pytest.mark.parametrize("f", [0.75, 0.95])
+def test_kink_velocity_g25(tmp_path, f):
+    """g = 25, overdamped (m = 1, eta = 100): the kink velocity of the LAMMPS
+    chain is the exact travelling wave of the discrete chain within the
+    integrator's first-order error, estimated from dt = 0.1 and 0.05; the
+    Richardson value agrees to 5e-4.  Against the continuum law of the
+    paper (Eq. crack.eqi04) the chain is slower by the discreteness
+    correction that vk_discrete predicts (8 % at f = 0.75, 5 % at 0.95):
+    the paper's law holds within 10 % for g = 25."""
+    g = 25.0
+    v1 = kink_velocity(tmp_path, f, g, 0.1)
+    v2 = kink_velocity(tmp_path, f, g, 0.05)
+    vd = fkme.vk_discrete(f, g, KC, UC, K, 1.0, ETA)
+    vc = fkme.vk_overdamped(f, g, KC, UC, K, 1.0, ETA)
+    err_est = abs(v2 - v1)
+    assert abs(v2 - vd) < 2.0 * err_est + 1e-4 * vd, (v1, v2, vd)
+    assert abs(2 * v2 - v1 - vd) < 5e-4 * vd, (v1, v2, vd)
+    assert abs(v2 / vc - 1) < 0.10, (v2, vc)
+    assert abs(v2 / vc - vd / vc) < 0.01
+
+
+def test_kink_velocity_tends_to_the_continuum_law(tmp_path):
+    """The discreteness correction to Eq. crack.eqi04 shrinks as the kink
+    widens (width ~ sqrt(g/kc)): at f = 0.85 the deviation falls from ~5 %
+    (g = 25) below 1.5 % (g = 400)."""
+    f = 0.85
+    dev = []
+    for g, dt, N, seed, track in ((25.0, 0.05, 200, (80, 120), 141),
+                                  (400.0, 0.02, 400, (150, 250), 290)):
+        v = kink_velocity(tmp_path, f, g, dt, N=N, seed=seed, track=track)
+        dev.append(abs(v / fkme.vk_overdamped(f, g, KC, UC, K, 1.0, ETA) - 1))
+    assert dev[1] < 0.015 and dev[1] < dev[0] / 3, dev
+
+
+def test_kink_pins_at_the_discrete_depinning_force(tmp_path):
+    """Peierls-Nabarro pinning (g = 25): a kink runs at f_+ + 0.02 and is
+    pinned at f_+ - 0.02, f_+ = 0.6215 from the exact static solution of
+    the discrete chain, well above the continuum Griffith force
+    f_min = 0.57."""
+    g = 25.0
+    fm, fp = fkme.discrete_depinning_force(g, KC, UC, K)
+    assert fp > fkme.f_min(KC, UC, K) + 0.04
+    ids = [126, 127, 128, 129, 130]
+    for f, moves in ((fp + 0.02, True), (fp - 0.02, False)):
+        chain(tmp_path, N=200, g=g, f0=f, dt=0.2, steps=15000, seed0=80, seed1=120, track=126,
+              trackfile="pin.dat")
+        tc = crossing_times(np.loadtxt(tmp_path / "pin.dat"), ids)
+        assert np.all(np.isfinite(tc)) == moves, (f, tc)
+
+
+def test_weak_blocks_nucleate_at_the_static_threshold(tmp_path):
+    """Paper protocol: two weak blocks (kc' = 0.5) and the stage ramped at
+    v = 1e-4 from f = 0.97.  The first slip happens at the driving force
+    where the static chain puts the weak blocks at u_c (linear algebra),
+    up to the overdamped lag of the ramp (< 1e-3)."""
+    N, g, v = 200, 25.0, 1e-4
+    kc = np.full(N, KC)
+    kc[99:101] = 0.5
+    A = np.diag(kc + K + 2 * g) - g * np.roll(np.eye(N), 1, 1) - g * np.roll(np.eye(N), -1, 1)
+    f_ini = UC / np.linalg.solve(A, np.ones(N)).max()
+    f0, dt = 0.97, 0.1
+    T = (f_ini - f0) / (K * v) + 300.0
+    chain(tmp_path, N=N, g=g, f0=f0, v=v, weak=100, steps=round(T / dt), minimize=1,
+          track=100, trackfile="nuc.dat", dt=dt)
+    assert np.loadtxt(tmp_path / "nuc.dat")[0, 1] < 100.0    # relaxed in the first well
+    tc = crossing_times(np.loadtxt(tmp_path / "nuc.dat"), [100])[0]
+    f_cross = f0 + K * v * tc
+    assert abs(f_cross - f_ini) < 1e-3, (f_cross, f_ini)
+
+
+# ------------------------------------------------------- forces, shapes
+def substrate_forces(tmp_path, shapeargs, extra="", kc=1.5, n=40, du=0.0731, u0=-0.6):
+    var = {"shapeargs": shapeargs, "kc": kc, "n": n, "du": du, "u0": u0}
+    if extra:
+        var["extra"] = extra
+    run_lammps(POINTS, var, cwd=tmp_path)
+    d = read_dump_last(tmp_path / "points.dump")
+    return d["f_sub[1]"], d["f_sub[2]"], d["f_sub[6]"]
+
+
+def test_substrate_force_of_the_shapes(tmp_path):
+    """F_s at prescribed displacements, both signs, against the paper's
+    definitions: sawtooth k_c (u mod u_c), smooth k_c [tanh + 1.5 e^-u
+    sin 3u] of (u mod u_c); reverse break: backward stretch r = u < 0 is
+    held by +k_c phi(|r|) instead of the previous well's top."""
+    kc = 1.5
+    u, fs, a = substrate_forces(tmp_path, "sawtooth 0.8", kc=kc)
+    r = np.mod(u, 0.8)
+    assert np.allclose(fs, -kc * r, atol=1e-12, rtol=0)
+    assert np.allclose(a, u - r, atol=1e-12)
+    u, fs, a = substrate_forces(tmp_path, "smooth 1.0", kc=kc)
+    assert np.allclose(fs, -kc * fkme.phi_smooth(np.mod(u, 1.0)), atol=1e-12, rtol=0)
+    u, fs, a = substrate_forces(tmp_path, "smooth 1.0", "reverse break", kc=kc)
+    neg = u < 0
+    assert neg.sum() > 3
+    assert np.allclose(fs[neg], kc * fkme.phi_smooth(-u[neg]), atol=1e-12, rtol=0)
+    assert np.allclose(fs[~neg], -kc * fkme.phi_smooth(np.mod(u[~neg], 1.0)), atol=1e-12, rtol=0)
+    assert np.all(a[neg] == 0.0)
+
+
+def test_master_equation_table_is_the_block_force(tmp_path):
+    """eq-me writes phi(u) = F(u)/(N k_c) of a rigid block (uniform
+    thresholds [0.75, 1.25]) on [0, u_c = 1.25]; fix eq/substrate table
+    gives k_c phi at any u, equal to the ME force F(X = u) to the
+    interpolation error of the table grid (dx = 0.005: < 1e-4)."""
+    run_eqme(["threshold", "uniform", "0.75", "1.25", "xmax", "2", "dx", "0.005",
+              "substrate", "sub.table", "BLOCK", "1.25", "force", "me.dat"], cwd=tmp_path)
+    me = np.loadtxt(tmp_path / "me.dat")
+    u, fs, a = substrate_forces(tmp_path, "table sub.table BLOCK", kc=2.0, n=60, du=0.0417, u0=0.013)
+    r = np.mod(u, 1.25)
+    ref = np.interp(r, me[:, 0], me[:, 1])
+    assert np.abs(fs + 2.0 * ref).max() < 2.0 * 1e-4
+    assert (u > 1.25).sum() > 10    # second period used
+
+
+def test_disorder_statistics_and_decomposition(tmp_path):
+    """disorder gaussian 1 0.05: the quenched factors d_n have the drawn
+    mean and spread (tolerances 4 standard errors for N = 4000), and the
+    same blocks get the same factors on 2 ranks (keyed by atom ID)."""
+    N, sd = 4000, 0.05
+    d = {}
+    for np_ in (1, 2):
+        run_lammps(POINTS, {"shapeargs": "sawtooth 1.0", "extra": f"disorder gaussian 1.0 {sd} 77",
+                            "n": N, "du": 0.0, "u0": 0.0}, nprocs=np_, cwd=tmp_path)
+        steps, cols = fkme.read_dump(tmp_path / "points.dump")
+        d[np_] = cols["f_sub[5]"][-1]
+    x = d[1]
+    assert abs(x.mean() - 1.0) < 4 * sd / math.sqrt(N)
+    assert abs(x.std(ddof=1) - sd) < 4 * sd / math.sqrt(2 * (N - 1))
+    assert np.array_equal(d[1], d[2])
+
+
+# ------------------------------------------------------- decomposition, restart
+def test_two_ranks_and_restart_reproduce_the_run(tmp_path):
+    """Two kinks running on a 200-block chain: 2 MPI ranks give the same
+    trajectory to rounding (sums over neighbors in another order), and a
+    run split by write_restart / read_restart continues it bit for bit."""
+    common = dict(N=200, g=25.0, f0=0.9, v=-2e-4, seed0=90, seed1=110, dt=0.1, every=1000)
+    chain(tmp_path, steps=2000, dumpfile="one.dump", **common)
+    chain(tmp_path, nprocs=2, steps=2000, dumpfile="two.dump", **common)
+    a, b = read_dump_last(tmp_path / "one.dump"), read_dump_last(tmp_path / "two.dump")
+    assert a["f_sub[6]"].max() > 0    # blocks slipped
+    assert np.abs(a["x"] - b["x"]).max() < 1e-10
+    assert np.array_equal(a["f_sub[6]"], b["f_sub[6]"])
+    chain(tmp_path, steps=1000, dumpfile="first.dump", restartfile="half_restart", **common)
+    chain(tmp_path, steps=1000, dumpfile="second.dump", readrestart="half_restart", **common)
+    c = read_dump_last(tmp_path / "second.dump")
+    assert np.array_equal(a["x"], c["x"])
+    assert np.array_equal(a["vx"], c["vx"])
+
+
+def test_bonds_and_pair_couple_the_chain_alike(tmp_path):
+    """The nearest-neighbor coupling by bond_style harmonic (a 1d chain
+    along the sliding direction) and by pair eq/elastic (displacements at
+    the sites' distance) give the same kink dynamics."""
+    common = dict(N=120, g=25.0, f0=0.9, seed0=50, seed1=70, dt=0.1, steps=3000, every=3000)
+    chain(tmp_path, coupling="pair", dumpfile="pair.dump", **common)
+    chain(tmp_path, coupling="bond", dumpfile="bond.dump", **common)
+    a, b = read_dump_last(tmp_path / "pair.dump"), read_dump_last(tmp_path / "bond.dump")
+    assert a["f_sub[6]"].sum() > 20    # the kinks ran
+    assert np.abs(a["x"] - b["x"]).max() < 1e-9
