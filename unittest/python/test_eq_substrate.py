@@ -338,3 +338,26 @@ def test_bonds_and_pair_couple_the_chain_alike(tmp_path):
     a, b = read_dump_last(tmp_path / "pair.dump"), read_dump_last(tmp_path / "bond.dump")
     assert a["f_sub[6]"].sum() > 20    # the kinks ran
     assert np.abs(a["x"] - b["x"]).max() < 1e-9
+
+
+def test_packaged_substrate_table_is_reproduced(tmp_path):
+    """potentials/eq_substrate.table is what tools/make_substrate_tables.py
+    writes with the package's ME solver (no hand-edited numbers)."""
+    import subprocess
+    import sys
+    root = Path(__file__).resolve().parents[2]
+    out = tmp_path / "sub.table"
+    subprocess.run([sys.executable, str(root / "tools" / "make_substrate_tables.py"), str(out)],
+                   check=True, stdout=subprocess.DEVNULL, env=dict(os.environ))
+    for key in ("UNIFORM_0.75_1.25", "REALISTIC_1.0"):
+        a = read_section(root / "potentials" / "eq_substrate.table", key)
+        b = read_section(out, key)
+        assert a.shape == b.shape and np.allclose(a, b, rtol=1e-10, atol=1e-12)
+
+
+def read_section(path, key):
+    lines = Path(path).read_text().splitlines()
+    i = lines.index(key)
+    n = int(lines[i + 1].split()[1])
+    rows = [l.split() for l in lines[i + 2:] if l.strip() and not l.startswith("#")][:n]
+    return np.array([[float(x) for x in r[1:]] for r in rows])
