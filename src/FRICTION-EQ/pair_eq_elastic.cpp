@@ -53,7 +53,7 @@ const char *USAGE = "expected 'pair_coeff I J ftilde lambda_c [rcut]' or "
 PairEQElastic::PairEQElastic(LAMMPS *lmp) :
     Pair(lmp), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr), lambda(nullptr), kidx(nullptr),
     anisotropic(0), fix(nullptr), sub(nullptr), hcol(0), idir(0), fresh(0), comm_mode(0), nmax(0), sx(nullptr),
-    dh(nullptr), ksum(nullptr), ghosts_current(0)
+    dh(nullptr), ksum(nullptr), ghosts_current(0), bcache(-1)
 {
   single_enable = 1;
   single_extra = 2;
@@ -348,6 +348,10 @@ void PairEQElastic::field()
 {
   grow();
   load_stretches();
+  if (sub) {
+    field_blocks();
+    return;
+  }
   double **st = state();
   double **x = atom->x;
   const int *type = atom->type;
@@ -356,14 +360,6 @@ void PairEQElastic::field()
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  const int d = idir;
-  // blocks couple by the distance of their sites, found in the neighbor
-  // list of the current positions: a coupled pair is in the list as long
-  // as its displacements differ by less than the skin (checked with a
-  // margin of a factor 2 for the motion until the next list build)
-  const double dumax = 0.5 * neighbor->skin;
-  double dubig = 0.0;
-  tagint ibig = 0, jbig = 0;
 
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
@@ -384,17 +380,100 @@ void PairEQElastic::field()
       const double sj = sx[j];
       if (std::isnan(sj)) continue;
       const int jtype = type[j];
-      double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-      if (sub) del[d] -= si - sj;    // blocks: the distance of their sites
+      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
       const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
       if (rsq > cutsq_in[itype][jtype]) continue;
       const double k = factor * kval(itype, jtype, rsq, del);
       ki += k;
       hi += k * (si - sj);
-      if (sub && std::fabs(si - sj) > dubig) {
-        dubig = std::fabs(si - sj);
-        ibig = atom->tag[i];
-        jbig = atom->tag[j];
+    }
+    ksum[i] = ki;
+    st[i][hcol] = hi;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   blocks of fix eq/substrate: the pairs of the neighbor list whose sites
+   are within the cutoff, with k_ij at the sites' distance
+   (x_i - x_j - (u_i - u_j) along dir); valid until the next list build
+------------------------------------------------------------------------- */
+
+void PairEQElastic::block_pairs()
+{
+  double **x = atom->x;
+  const int *type = atom->type;
+  const double *special_lj = force->special_lj;
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  const int d = idir;
+  bfirst.assign(inum + 1, 0);
+  bj.clear();
+  bk.clear();
+  for (int ii = 0; ii < inum; ii++) {
+    bfirst[ii] = (int) bj.size();
+    const int i = ilist[ii];
+    const double si = sx[i];
+    if (std::isnan(si)) continue;
+    const int itype = type[i];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      int j = jlist[jj];
+      const double factor = special_lj[sbmask(j)];
+      j &= NEIGHMASK;
+      const double sj = sx[j];
+      if (std::isnan(sj)) continue;
+      const int jtype = type[j];
+      double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      del[d] -= si - sj;
+      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+      if (rsq > cutsq_in[itype][jtype]) continue;
+      bj.push_back(j);
+      bk.push_back(factor * kval(itype, jtype, rsq, del));
+    }
+  }
+  bfirst[inum] = (int) bj.size();
+  bcache = neighbor->ncalls;
+}
+
+/* ----------------------------------------------------------------------
+   field h_i = sum_j k_ij (u_i - u_j) of the blocks.  A coupled pair is in
+   the neighbor list of the current positions as long as the blocks'
+   displacements differ by less than the skin: checked every step with a
+   margin of a factor 2 for the motion until the next list build
+------------------------------------------------------------------------- */
+
+void PairEQElastic::field_blocks()
+{
+  if (bcache != neighbor->ncalls || (int) bfirst.size() != list->inum + 1) block_pairs();
+  double **st = state();
+  const int inum = list->inum;
+  const int *ilist = list->ilist;
+  const int *first = bfirst.data();
+  const int *jv = bj.data();
+  const double *kv = bk.data();
+  const double dumax = 0.5 * neighbor->skin;
+  double dubig = 0.0;
+  int ibig = -1, jbig = -1;
+  for (int ii = 0; ii < inum; ii++) {
+    const int i = ilist[ii];
+    const double si = sx[i];
+    if (std::isnan(si)) {
+      ksum[i] = 0.0;
+      st[i][hcol] = 0.0;
+      continue;
+    }
+    double hi = 0.0, ki = 0.0;
+    for (int m = first[ii]; m < first[ii + 1]; m++) {
+      const double ds = si - sx[jv[m]];
+      ki += kv[m];
+      hi += kv[m] * ds;
+      if (std::fabs(ds) > dubig) {
+        dubig = std::fabs(ds);
+        ibig = i;
+        jbig = jv[m];
       }
     }
     ksum[i] = ki;
@@ -405,7 +484,7 @@ void PairEQElastic::field()
                "Pair eq/elastic: the displacements of coupled blocks {} and {} differ by {:.6g}, more "
                "than half the neighbor skin {}: coupled pairs may be missing from the neighbor "
                "list; raise the skin (neighbor SKIN bin) above twice the largest difference",
-               ibig, jbig, dubig, neighbor->skin);
+               atom->tag[ibig], atom->tag[jbig], dubig, neighbor->skin);
 }
 
 /* ----------------------------------------------------------------------
@@ -438,8 +517,7 @@ void PairEQElastic::scatter(const int *clist, int n, const double *ds)
       j &= NEIGHMASK;
       if (std::isnan(sx[j])) continue;
       const int jtype = type[j];
-      double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-      if (sub) del[idir] -= sx[i] - sx[j];
+      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
       const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
       if (rsq > cutsq_in[itype][jtype]) continue;
       dh[j] -= factor * kval(itype, jtype, rsq, del) * d;
@@ -486,6 +564,25 @@ void PairEQElastic::compute(int eflag, int vflag)
   int **firstneigh = list->firstneigh;
   double fv[3] = {0.0, 0.0, 0.0};
 
+  if (sub) {
+    // blocks: the cached pairs, the virial at the sites' separation
+    if (bcache != neighbor->ncalls || (int) bfirst.size() != inum + 1) block_pairs();
+    for (int ii = 0; ii < inum; ii++) {
+      const int i = ilist[ii];
+      const double si = sx[i];
+      if (std::isnan(si)) continue;
+      for (int m = bfirst[ii]; m < bfirst[ii + 1]; m++) {
+        const int j = bj[m];
+        const double k = bk[m], ds = si - sx[j];
+        double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+        del[d] -= ds;
+        fv[d] = -k * ds;
+        ev_tally_xyz_full(i, 0.5 * k * ds * ds, 0.0, fv[0], fv[1], fv[2], del[0], del[1], del[2]);
+      }
+    }
+    return;
+  }
+
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
     const double si = sx[i];
@@ -500,8 +597,7 @@ void PairEQElastic::compute(int eflag, int vflag)
       const double sj = sx[j];
       if (std::isnan(sj)) continue;
       const int jtype = type[j];
-      double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-      if (sub) del[d] -= si - sj;
+      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
       const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
       if (rsq > cutsq_in[itype][jtype]) continue;
       const double k = factor * kval(itype, jtype, rsq, del);

@@ -80,6 +80,14 @@ class PairEQElastic : public Pair {
   double *ksum;      // K_i of local contacts
   int ghosts_current;    // ghost stretches match the fix state
 
+  // blocks of fix eq/substrate: their sites do not move, so the coupled
+  // pairs of a neighbor list and their k_ij are found once per list build
+  std::vector<int> bfirst, bj;    // offsets per ilist entry, partner j
+  std::vector<double> bk;         // k_ij (special factor included)
+  bigint bcache;                  // neighbor->ncalls of the cached list (-1: none)
+  void block_pairs();
+  void field_blocks();
+
   void allocate();
   void grow();
   void load_stretches();
