@@ -51,7 +51,7 @@ const char *USAGE = "expected 'pair_coeff I J ftilde lambda_c [rcut]' or "
 /* ---------------------------------------------------------------------- */
 
 PairEQElastic::PairEQElastic(LAMMPS *lmp) :
-    Pair(lmp), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr), lambda(nullptr), kidx(nullptr),
+    Pair(lmp), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr), lambda(nullptr), kidx(nullptr), mixed(nullptr),
     anisotropic(0), fix(nullptr), sub(nullptr), hcol(0), idir(0), fresh(0), comm_mode(0), nmax(0), sx(nullptr),
     dh(nullptr), ksum(nullptr), ghosts_current(0), bcache(-1)
 {
@@ -82,6 +82,7 @@ PairEQElastic::~PairEQElastic()
     memory->destroy(ftilde);
     memory->destroy(lambda);
     memory->destroy(kidx);
+    memory->destroy(mixed);
   }
 }
 
@@ -98,11 +99,13 @@ void PairEQElastic::allocate()
   memory->create(ftilde, n + 1, n + 1, "pair:ftilde");
   memory->create(lambda, n + 1, n + 1, "pair:lambda");
   memory->create(kidx, n + 1, n + 1, "pair:kidx");
+  memory->create(mixed, n + 1, n + 1, "pair:mixed");
   for (int i = 0; i <= n; i++)
     for (int j = 0; j <= n; j++) {
       setflag[i][j] = 0;
       cut[i][j] = cutsq_in[i][j] = ftilde[i][j] = lambda[i][j] = 0.0;
       kidx[i][j] = -1;
+      mixed[i][j] = 0;
     }
 }
 
@@ -195,6 +198,7 @@ void PairEQElastic::coeff(int narg, char **arg)
   for (int i = ilo; i <= ihi; i++) {
     for (int j = MAX(jlo, i); j <= jhi; j++) {
       kidx[i][j] = k;
+      mixed[i][j] = 0;
       ftilde[i][j] = kern.ftilde;
       lambda[i][j] = kern.lambda;
       cut[i][j] = cut_one;
@@ -270,8 +274,13 @@ double PairEQElastic::init_one(int i, int j)
                         "pair_coeff {} {} explicitly (tables are not mixed)", i, j, i, j);
     const double f = mix_energy(ki.ftilde, kj.ftilde, ki.lambda, kj.lambda);
     const double l = mix_distance(ki.lambda, kj.lambda);
-    kernels.push_back(feq::make_crossover(f, l));
-    kidx[i][j] = (int) kernels.size() - 1;
+    // a kernel mixed by an earlier init is replaced, not appended again
+    if (kidx[i][j] >= 0 && mixed[i][j]) kernels[kidx[i][j]] = feq::make_crossover(f, l);
+    else {
+      kernels.push_back(feq::make_crossover(f, l));
+      kidx[i][j] = (int) kernels.size() - 1;
+      mixed[i][j] = 1;
+    }
     ftilde[i][j] = f;
     lambda[i][j] = l;
     cut[i][j] = mix_distance(cut[i][i], cut[j][j]);
@@ -551,10 +560,13 @@ void PairEQElastic::compute(int eflag, int vflag)
   for (int i = 0; i < nlocal; i++)
     if (!std::isnan(sx[i])) f[i][d] -= st[i][hcol];
 
+  // after an avalanche the stretches held here (local and ghost) are those
+  // before its breaks: reload them, for the energy below and for single()
+  // (compute pair/local), one forward communication on steps with breaks
+  if (!ghosts_current) load_stretches();
   if (!evflag) return;
 
   // energy and virial: one more pass, only on steps that need them
-  if (!ghosts_current) load_stretches();
   double **x = atom->x;
   const int *type = atom->type;
   const double *special_lj = force->special_lj;

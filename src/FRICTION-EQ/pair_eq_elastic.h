@@ -65,6 +65,7 @@ class PairEQElastic : public Pair {
   double **cut, **cutsq_in;    // cutoffs; squared with a 1e-12 relative margin
   double **ftilde, **lambda;   // crossover coefficients (for extract)
   int **kidx;                  // kernel of a type pair (index into kernels)
+  int **mixed;                 // 1: the kernel of a type pair was mixed by init_one
   std::vector<feq::Kernel> kernels;
   int anisotropic;
 

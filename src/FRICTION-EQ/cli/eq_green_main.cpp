@@ -12,6 +12,8 @@
      mismatch m          E_* / E_top - E_* / E_bottom (z coupling)        (0)
      boundary open|periodic   finite array or periodic images         (open)
      method fft|dense    FFT + CG, or dense Cholesky (small L)        (fft)
+     dense_limit n       largest number of unknowns of the dense path (8000;
+                         L = 89 needs 15842: 1.9 GiB, minutes)
      precond circulant|jacobi|none                                    (circulant)
      tol t               CG relative residual                         (1e-12)
      maxiter n           CG iteration limit                           (20000)
@@ -70,7 +72,7 @@ int integer(const std::string &kw, const std::string &s)
 const char *USAGE =
     "usage: eq-green [keyword value ...]\n"
     "keywords: L n | gamma1 g | gamma2 g | sigma s | mismatch m | boundary open|periodic |\n"
-    "          method fft|dense | precond circulant|jacobi|none | tol t | maxiter n |\n"
+    "          method fft|dense | dense_limit n | precond circulant|jacobi|none | tol t | maxiter n |\n"
     "          remove ix iy | profile FILE | map FILE | table FILE KEYWORD | rmax R |\n"
     "          kc k | aniso yes|no | summary FILE\n"
     "see doc/src/eq_green.rst\n";
@@ -104,6 +106,11 @@ int main(int argc, char **argv)
       else if (k == "mismatch") p.mismatch = number(k, val());
       else if (k == "tol") o.tol = number(k, val());
       else if (k == "maxiter") o.maxiter = integer(k, val());
+      else if (k == "dense_limit") {
+        const long n = integer(k, val());
+        if (n < 1) throw UsageError("keyword dense_limit: must be >= 1");
+        o.dense_limit = (size_t) n;
+      }
       else if (k == "rmax") rmax = integer(k, val());
       else if (k == "kc") {
         kc = number(k, val());
