@@ -41,10 +41,11 @@ enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE
 /* ---------------------------------------------------------------------- */
 
 FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), idir(0), ilevel_respa(0), nlevels_respa(0), rev_break(0), exact(1), window(0.5), drive_flag(0), kdrive(0.0),
-    vstage(0.0), stage(0.0), dseed(0), jump_warned(0), state(nullptr), neval(0),
-    reduced_eval(-1), neval_step(-1)
+    Fix(lmp, narg, arg), idir(0), ilevel_respa(0), nlevels_respa(0), rev_break(0), exact(1),
+    window(0.5), drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0), dseed(0), jump_warned(0),
+    state(nullptr), neval(0), reduced_eval(-1), neval_step(-1)
 {
+  for (double &v : global_sum) v = 0.0;
   if (narg < 5)
     error->all(FLERR, "Illegal fix eq/substrate command: expected 'fix ID group eq/substrate kc "
                       "<shape> <values> [keyword values ...]' with shape one of: {}", SHAPES);
