@@ -62,6 +62,8 @@ def main():
             res = {}
             for coupling, fix in configs:
                 natoms, t, timers = best(n, r, fix, coupling, steps, out, a.repeat)
+                if natoms != n:
+                    sys.exit(f"bench_substrate: {natoms} atoms created for N = {n}")
                 res[coupling, fix] = t
                 bs = natoms * steps
                 pct = " ".join(f"{100 * timers[s] / t:5.1f}" for s in SECTIONS)
