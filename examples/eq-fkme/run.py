@@ -228,11 +228,14 @@ def part_a04(out, N):
 
 
 # ------------------------------------------------------------------ a05
-def part_a05(out, N):
+def part_a05(out, N, gs=(5.0, 25.0)):
     res = {}
-    fig, ax = figure(1, 2, (11, 4.2))
-    lines = [f"# a05: v_k(f) from N(<u_dot> - v_bar)/(2 jump), N = {N}"]
-    for k, (g, vb) in enumerate(((5.0, -4e-5), (25.0, -2e-4))):
+    fig, ax = figure(1, len(gs), (5.5 * len(gs), 4.2))
+    ax = np.atleast_1d(ax)
+    lines = [f"# a05: v_k(f) from the slip count and from N(<u_dot> - v_bar)/(2 jump), N = {N}"]
+    vbs = {5.0: -4e-5, 25.0: -2e-4}          # the paper's reversal velocities
+    for k, g in enumerate(gs):
+        vb = vbs.get(g, -2e-4)
         r = protocol(out / f"a05_g{g:g}", N, g, vb, dump=0)
         fb, vk = vk_from_mean(r)
         fs, vs = vk_from_slips(r)
@@ -419,6 +422,8 @@ def main():
     ap.add_argument("--part", nargs="+", default=["all"],
                     choices=["a04", "a05", "a03", "underdamped", "integrators", "all"])
     ap.add_argument("--N", type=int, default=3000, help="chain length (a04, a05, a03)")
+    ap.add_argument("--gs", type=float, nargs="+", default=[5.0, 25.0],
+                    help="a05: couplings g (v_b = -4e-5 for g = 5, else -2e-4)")
     ap.add_argument("--out", default=str(HERE / "out"))
     a = ap.parse_args()
     out = Path(a.out)
@@ -429,7 +434,7 @@ def main():
         if p == "a04":
             part_a04(out, a.N)
         elif p == "a05":
-            part_a05(out, a.N)
+            part_a05(out, a.N, tuple(a.gs))
         elif p == "a03":
             part_a03(out, a.N)
         elif p == "underdamped":
