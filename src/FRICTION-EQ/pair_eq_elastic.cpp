@@ -215,6 +215,11 @@ void PairEQElastic::init_style()
 {
   if (!atom->tag_enable) error->all(FLERR, "Pair style eq/elastic requires atom IDs");
 
+  // the cached block pairs are keyed by neighbor->ncalls, which restarts at
+  // 0 with every run or minimize, whose setup may also sort or migrate the
+  // atoms: drop the cache here
+  bcache = -1;
+
   // exactly one fix eq/contacts (contacts and their stretches) or one fix
   // eq/substrate (FK-ME blocks and their displacements)
   fix = nullptr;
