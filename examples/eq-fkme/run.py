@@ -138,6 +138,12 @@ def vk_from_slips(r, nbins=40):
     return np.array(fb), np.array(vk)
 
 
+def band(f, dev, fmin):
+    """'min .. max' of the relative deviations dev over the bins f >= fmin."""
+    d = dev[f >= fmin]
+    return f"{d.min():+.4f} .. {d.max():+.4f} ({len(d)} bins)" if len(d) else "no bins"
+
+
 def arrest_force(r):
     """Driving force at the last change of the slip count (to the series'
     interval)."""
@@ -194,6 +200,8 @@ def part_a04(out, N):
         f"(continuum Griffith f_min = {fkme.f_min(KC, UC, K):.3f})",
         f"  PN oscillation of max velocity: frequency {nu:.5f} per time unit; "
         f"v_k/a from <u_dot> = {vk_pn:.5f} (ratio {nu / vk_pn:.4f})",
+        f"  v_k from the slip count / exact discrete-chain velocity - 1 for "
+        f"f >= f_+ + 0.04: {band(fs, vs / vds - 1, fp + 0.04)}",
         f"  v_k(f) against the exact discrete-chain velocity, {len(fs)} bins of f in "
         f"[{fs.min():.3f}, {fs.max():.3f}]: from the slip count rms rel. dev. "
         f"{np.sqrt(np.mean((vs / vds - 1) ** 2)):.4f} (max {np.max(np.abs(vs / vds - 1)):.4f}); "
@@ -249,6 +257,7 @@ def part_a05(out, N, gs=(5.0, 25.0)):
             f"    v_k from the slip count vs exact discrete chain: rms rel. dev. "
             f"{np.sqrt(np.mean((vs / vd - 1) ** 2)):.4f}, max {np.max(np.abs(vs / vd - 1)):.4f}"
             f"; from <u_dot>: rms {np.sqrt(np.mean((vk / vdm - 1) ** 2)):.4f}\n"
+            f"    slip count for f >= f_+ + 0.04: {band(fs, vs / vd - 1, fp + 0.04)}\n"
             f"    vs Eq. crack.eqi04 (continuum): {np.nanmin(vs / vc - 1):+.3f} .. "
             f"{np.nanmax(vs / vc - 1):+.3f} for f in [{fs.min():.3f}, {fs.max():.3f}]")
         ff = np.linspace(fkme.f_min(KC, UC, K) + 1e-4, 1.0, 300)
