@@ -47,6 +47,27 @@ def same(a, b):
     assert np.max(np.abs(a[:, [1, 2, 5, 6]] - b[:, [1, 2, 5, 6]])) < 1e-9
 
 
+def test_split_along_x_needs_the_same_atom_ids(tmp_path):
+    """The draws are keyed by atom ID.  create_atoms numbers the atoms
+    processor by processor, so with the box split along x (processors
+    2 1 1) the same lattice site gets another ID than on 1 rank, and the
+    contacts get other thresholds: the runs differ.  With the contacts
+    read from a data file (same IDs at the same sites) the split along x
+    gives the breaks and avalanches of 1 rank."""
+    var = dict(CASES["qs"])
+    run(tmp_path / "data", "data", 1, **var)
+    data = tmp_path / "data" / "contacts.data"
+    run(tmp_path / "np1", "run", 1, datafile=data, fromdata=1, **var)
+    run(tmp_path / "np2x", "run", 2, datafile=data, fromdata=1, grid="2 1 1", **var)
+    a, b = final_state(tmp_path / "np1", "run"), final_state(tmp_path / "np2x", "run")
+    same(a, b)
+    assert avalanches(tmp_path / "np1", "run") == avalanches(tmp_path / "np2x", "run")
+    # create_atoms on a 2 x 1 grid: other IDs, other contacts
+    run(tmp_path / "np2c", "run", 2, grid="2 1 1", **var)
+    c = final_state(tmp_path / "np2c", "run")
+    assert not np.array_equal(a[:, 3], c[:, 3]) or np.abs(a[:, 2] - c[:, 2]).max() > 1e-6
+
+
 @pytest.mark.parametrize("case", sorted(CASES))
 def test_one_and_two_ranks_same_breaks_and_avalanches(tmp_path, case):
     run(tmp_path / "np1", "run", 1, **CASES[case])
