@@ -5,7 +5,7 @@ runs (N = 4080, quasi-static driving) against the master equation with the
 effective distributions of Sec. IV, with the paper's b1..b4 and with b1..b4
 fitted to these EQ runs.
 
-    /usr/bin/python3 run_steady.py [--kappas 0 0.02 ...] [--xmax 8] [--out out]
+    /usr/bin/python3 run_steady.py [--kappas 0 0.02 ...] [--xmax 8] [--rmode stretch] [--out out]
 
 Prints the L1 distance int |Q_EQ - Q_ME| dx for both parameter sets (the
 kappa = 0 row is the statistical floor: there the ME is exact), the fitted
@@ -24,12 +24,14 @@ import eqtools  # noqa: E402
 from eqtools import meanfield as mf  # noqa: E402
 
 
-def run_eq(kappa, out, seed, xmax, xhist, nx=60, ny=34, nprocs=1, lam=3.0):
-    d = Path(out) / ("steady_k%g_s%d_l%g" % (kappa, seed, lam))
+def run_eq(kappa, out, seed, xmax, xhist, nx=60, ny=34, nprocs=1, lam=3.0, rmode="force"):
+    d = Path(out) / ("steady_k%g_s%d_l%g%s" % (kappa, seed, lam,
+                                              "" if rmode == "force" else "_" + rmode))
     d.mkdir(parents=True, exist_ok=True)
     eqtools.run_lammps(HERE / "in.eq-interact",
                        {"kappa": kappa, "seed": seed, "Xmax": xmax, "Xhist": xhist,
-                        "nx": nx, "ny": ny, "lam": lam, "out": d}, nprocs=nprocs, cwd=d)
+                        "nx": nx, "ny": ny, "lam": lam, "rmode": rmode, "out": d},
+                       nprocs=nprocs, cwd=d)
     c, n, tot = eqtools.read_histo(d / "Qs.dat")
     w = c[1] - c[0]
     return c, n / tot / w, avalanche_sizes(d, xhist)
@@ -43,10 +45,10 @@ def avalanche_sizes(d, xhist):
     return av[np.isin(av[:, 0], steps), 1]
 
 
-def analyse(kappas, out, seeds, xmax, xhist, nx=60, ny=34, lam=3.0):
+def analyse(kappas, out, seeds, xmax, xhist, nx=60, ny=34, lam=3.0, rmode="force"):
     rows = []
     for k in kappas:
-        qs = [run_eq(k, out, s, xmax, xhist, nx, ny, lam=lam) for s in seeds]
+        qs = [run_eq(k, out, s, xmax, xhist, nx, ny, lam=lam, rmode=rmode) for s in seeds]
         c = qs[0][0]
         q = np.mean([v for _, v, _ in qs], axis=0)
         sizes = np.concatenate([a for _, _, a in qs])
@@ -63,8 +65,11 @@ def analyse(kappas, out, seeds, xmax, xhist, nx=60, ny=34, lam=3.0):
     # 0 < kappa <= 0.1, the range where the linear forms hold (the
     # per-kappa alpha, beta, gamma are reported for every kappa)
     inter = [r for r in rows if 0 < r["kappa"] <= 0.1]
-    b_own = mf.fit_b_global([r["kappa"] for r in inter],
-                            [(r["centers"], r["q"]) for r in inter])
+    if rmode == "force" and len(inter) >= 2:
+        b_own = mf.fit_b_global([r["kappa"] for r in inter],
+                                [(r["centers"], r["q"]) for r in inter])
+    else:                       # too few kappas, or not the paper's model
+        b_own = tuple(mf.PAPER_B)
     for r in rows:
         x_me, q_me, _ = mf.solve_steady(r["kappa"], Path(out) / "me_own", b=b_own)
         r["x_own"], r["q_own"] = x_me, q_me
@@ -84,16 +89,22 @@ def main():
     ap.add_argument("--xhist", type=float, default=2.0)
     ap.add_argument("--lam", type=float, default=3.0,
                     help="lambda_c = rcut (the paper's b1..b4 are for 3; try 5)")
+    ap.add_argument("--rmode", choices=["force", "stretch"], default="force",
+                    help="fix eq/contacts reform_as (stretch: the spring re-forms with "
+                         "stretch r, not the paper's Sec. IV model)")
     ap.add_argument("--out", default=str(HERE / "out"))
     args = ap.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    rows, b_own = analyse(args.kappas, out, args.seeds, args.xmax, args.xhist, lam=args.lam)
+    rows, b_own = analyse(args.kappas, out, args.seeds, args.xmax, args.xhist, lam=args.lam,
+                          rmode=args.rmode)
 
-    lines = ["# Fig. mf.B02a: N = 4080, lambda_c = %g, seeds %s, Q_s from X in [%g, %g]" %
-             (args.lam, args.seeds, args.xhist, args.xmax),
+    lines = ["# Fig. mf.B02a: N = 4080, lambda_c = %g, seeds %s, Q_s from X in [%g, %g], "
+             "reform_as %s" % (args.lam, args.seeds, args.xhist, args.xmax, args.rmode),
              "# paper b1..b4 = %s" % (mf.PAPER_B,),
-             "# fitted b1..b4 = %.3f %.3f %.4f %.4f (global fit, 0 < kappa <= 0.1)" % b_own,
+             ("# fitted b1..b4 = %.3f %.3f %.4f %.4f (global fit, 0 < kappa <= 0.1)" % b_own
+              if tuple(b_own) != tuple(mf.PAPER_B) else
+              "# b1..b4 not fitted (needs reform_as force and >= 2 kappas in (0, 0.1])"),
              "# mean field: beta = 1 + kappa S, S = sum_j a/r_j = %.4f (lambda_c = %ga)" %
              (mf.lattice_sum(args.lam), args.lam),
              "# kappa  L1(paper b) L1(fitted b) | per-kappa fit: alpha beta gamma L1 | "
@@ -106,8 +117,9 @@ def main():
                       len(sz), sz.mean() if len(sz) else 0, sz.max() if len(sz) else 0))
     text = "\n".join(lines)
     print(text)
-    (out / ("steady_summary.txt" if args.lam == 3.0 else "steady_summary_l%g.txt" % args.lam)
-     ).write_text(text + "\n")
+    tag = ("" if args.lam == 3.0 else "_l%g" % args.lam) + \
+        ("" if args.rmode == "force" else "_" + args.rmode)
+    (out / ("steady_summary%s.txt" % tag)).write_text(text + "\n")
 
     import matplotlib
     matplotlib.use("Agg")
@@ -124,7 +136,7 @@ def main():
     ax.set_title("EQ (dots), ME paper b (solid), ME fitted b (dashed)", fontsize=9)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    name = "steady.png" if args.lam == 3.0 else "steady_l%g.png" % args.lam
+    name = "steady%s.png" % tag
     fig.savefig(out / name, dpi=90)
     print("wrote", out / name)
 
