@@ -133,3 +133,23 @@ def test_bad_input(args, msg):
     assert p.returncode == 1
     assert "ERROR" in p.stdout and msg in p.stdout
     assert "nan" not in p.stdout.lower()
+
+
+def test_diagonal_kernel_against_the_interpolated_table(work):
+    """The table holds k0 = (k(r,0) + k(r,pi/2))/2 at integer r along the
+    axes; pair eq/elastic interpolates r k linearly between them.  On the
+    diagonal (cos 2 phi = 0, so k = k0 to first order in gamma_1) the full
+    solution at gamma_1 = 0.06 agrees with that interpolation to 1 % at
+    r = sqrt 2 (where the linear interpolation of r k is coarsest) and to
+    0.5 % from r = 2 sqrt 2 on."""
+    key, n, rows, com = read_table(ROOT / "potentials" / "eq_green_g0.06.table")
+    r_tab, k0 = rows[:, 1], rows[:, 2]
+    eqtools.run_eqgreen(["L", 257, "gamma2", 0.3, "sigma", 0.3, "gamma1", 0.06, "rmax", 10,
+                         "profile", "pdiag.dat"], cwd=work)
+    d = eqtools.read_green_profile(Path(work) / "pdiag.dat")["d"]
+    r, kd = d[:, 0], d[:, 5]
+    sel = r <= r_tab.max()
+    rk = np.interp(r[sel], r_tab, r_tab * k0)
+    dev = kd[sel] / (rk / r[sel]) - 1
+    assert abs(dev[0]) < 0.015, dev
+    assert np.abs(dev[1:]).max() < 0.005, dev
