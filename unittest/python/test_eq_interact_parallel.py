@@ -8,6 +8,14 @@ sum over neighbours whose order follows the neighbour lists: values agree
 to rounding, breaks and avalanches exactly.  Compared: the avalanche
 records (step, size, trigger, rounds), every contact's break count, and
 stretches / thresholds / anchors to 1e-9.
+
+Identical results need the same atom IDs at the same sites: the random
+draws are keyed by atom ID, and create_atoms numbers atoms processor by
+processor.  The create_atoms tests below run on the grid LAMMPS picks for
+2 ranks (1 x 2 here: a split along y keeps the IDs of 1 rank);
+test_split_along_x_needs_the_same_atom_ids reads the contacts from a data
+file (write_data once) on a 2 x 1 grid, and shows that create_atoms on that
+grid gives other contacts.
 """
 from pathlib import Path
 
@@ -47,14 +55,16 @@ def same(a, b):
     assert np.max(np.abs(a[:, [1, 2, 5, 6]] - b[:, [1, 2, 5, 6]])) < 1e-9
 
 
-def test_split_along_x_needs_the_same_atom_ids(tmp_path):
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_split_along_x_needs_the_same_atom_ids(tmp_path, case):
     """The draws are keyed by atom ID.  create_atoms numbers the atoms
     processor by processor, so with the box split along x (processors
     2 1 1) the same lattice site gets another ID than on 1 rank, and the
     contacts get other thresholds: the runs differ.  With the contacts
-    read from a data file (same IDs at the same sites) the split along x
-    gives the breaks and avalanches of 1 rank."""
-    var = dict(CASES["qs"])
+    read from a data file (write_data once; same IDs at the same sites) the
+    split along x gives the breaks, avalanches, stretches and interaction
+    forces of 1 rank."""
+    var = dict(CASES[case])
     run(tmp_path / "data", "data", 1, **var)
     data = tmp_path / "data" / "contacts.data"
     run(tmp_path / "np1", "run", 1, datafile=data, fromdata=1, **var)
@@ -62,6 +72,9 @@ def test_split_along_x_needs_the_same_atom_ids(tmp_path):
     a, b = final_state(tmp_path / "np1", "run"), final_state(tmp_path / "np2x", "run")
     same(a, b)
     assert avalanches(tmp_path / "np1", "run") == avalanches(tmp_path / "np2x", "run")
+    assert a[:, 3].min() >= 1 and np.abs(a[:, 6]).max() > 0   # breaks, and a field
+    if case != "qs":
+        return
     # create_atoms on a 2 x 1 grid: other IDs, other contacts
     run(tmp_path / "np2c", "run", 2, grid="2 1 1", **var)
     c = final_state(tmp_path / "np2c", "run")
