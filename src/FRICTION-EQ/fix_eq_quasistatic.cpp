@@ -25,8 +25,7 @@ constexpr double QS_TOLERANCE = 1.0e-13;
 }    // namespace
 
 FixEQQuasistatic::FixEQQuasistatic(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), contacts(nullptr), dxmax(0.0), xtotal(0.0), dx_last(0.0), idir(0),
-    covers_contacts(0)
+    Fix(lmp, narg, arg), contacts(nullptr), dxmax(0.0), xtotal(0.0), dx_last(0.0), idir(0)
 {
   if (group->dynamic[igroup])
     error->all(FLERR, "Fix eq/quasistatic: group {} is dynamic; allowed: a static group",
@@ -88,15 +87,20 @@ void FixEQQuasistatic::init()
   idir = *(int *) contacts->extract("dir", dim);
   contacts->set_break_tolerance(QS_TOLERANCE);
 
-  // does the group move all contacts (then their interaction field only
-  // changes by breaks)?
+  // the advance to the next break assumes that every contact moves with
+  // the slider (then the field only changes by breaks)
   const int *mask = atom->mask;
-  int missing = 0;
+  bigint missing = 0;
   for (int i = 0; i < atom->nlocal; i++)
-    if ((mask[i] & contacts->groupbit) && !(mask[i] & groupbit)) missing = 1;
-  int any = 0;
-  MPI_Allreduce(&missing, &any, 1, MPI_INT, MPI_MAX, world);
-  covers_contacts = any ? 0 : 1;
+    if ((mask[i] & contacts->groupbit) && !(mask[i] & groupbit)) ++missing;
+  bigint all = 0;
+  MPI_Allreduce(&missing, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (all > 0)
+    error->all(FLERR, "Fix eq/quasistatic: group {} leaves {} contacts of fix {} (group {}) "
+                      "behind; the advance to the next break assumes that every contact moves "
+                      "with the slider: use a group that contains group {}",
+               group->names[igroup], all, contacts_id, group->names[contacts->igroup],
+               group->names[contacts->igroup]);
   if (!utils::strmatch(update->integrate_style, "^verlet"))
     error->all(FLERR, "Fix eq/quasistatic requires run_style verlet");
 }
@@ -128,7 +132,7 @@ void FixEQQuasistatic::initial_integrate(int /*vflag*/)
     }
   xtotal += dx;
   dx_last = dx;
-  if (covers_contacts) contacts->note_rigid_shift();
+  contacts->note_rigid_shift();
 }
 
 double FixEQQuasistatic::compute_scalar()

@@ -45,7 +45,6 @@ class FixEQQuasistatic : public Fix {
   double xtotal;     // slider displacement since the fix was defined
   double dx_last;    // advance of the last step
   int idir;
-  int covers_contacts;    // the group holds every contact of the fix
   void release();
 };
 

@@ -59,6 +59,7 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
   single_extra = 2;
   svector = new double[single_extra];
   restartinfo = 1;
+  reinitflag = 0;    // see reinit()
   writedata = 0;
   one_coeff = 0;
   manybody_flag = 0;
@@ -131,8 +132,8 @@ void PairEQElastic::settings(int narg, char **arg)
   if (narg != 1)
     error->all(FLERR, "Illegal pair_style eq/elastic command: expected 'pair_style eq/elastic rcut'");
   cut_global = utils::numeric(FLERR, arg[0], false, lmp);
-  if (!(cut_global > 0.0))
-    error->all(FLERR, "Pair style eq/elastic: rcut must be > 0 (got {})", arg[0]);
+  if (!(cut_global > 0.0) || !std::isfinite(cut_global))
+    error->all(FLERR, "Pair style eq/elastic: rcut must be a finite number > 0 (got {})", arg[0]);
 
   // reset explicit cutoffs that were set from the previous global cutoff
   if (allocated) {
@@ -186,7 +187,8 @@ void PairEQElastic::coeff(int narg, char **arg)
     }
     if (narg > next) {
       cut_one = utils::numeric(FLERR, arg[next], false, lmp);
-      if (!(cut_one > 0.0)) throw feq::SpecError(std::string("rcut must be > 0 (got ") + arg[next] + ")");
+      if (!(cut_one > 0.0) || !std::isfinite(cut_one))
+        throw feq::SpecError(std::string("rcut must be a finite number > 0 (got ") + arg[next] + ")");
     }
   } catch (const feq::SpecError &e) {
     error->all(FLERR, "Pair eq/elastic coefficients for {} {}: {}", arg[0], arg[1], e.what());
@@ -651,6 +653,18 @@ double PairEQElastic::single(int i, int j, int itype, int jtype, double rsq,
 }
 
 /* ---------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   fix adapt: the kernels are built by pair_coeff, and the cached block
+   pairs and the field of the contacts would not follow a change of the
+   extract()ed arrays: refused with an error that says what to do instead
+------------------------------------------------------------------------- */
+
+void PairEQElastic::reinit()
+{
+  error->all(FLERR, "Pair style eq/elastic does not support fix adapt (its kernels are set by "
+                    "pair_coeff): change the coefficients with pair_coeff between runs");
+}
 
 void *PairEQElastic::extract(const char *str, int &dim)
 {

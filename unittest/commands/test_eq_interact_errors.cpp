@@ -48,8 +48,10 @@ TEST_F(EQInteractErrors, PairStyleAndCoeffs)
   TEST_FAILURE(".*ERROR: Illegal pair_style eq/elastic command: expected 'pair_style eq/elastic "
                "rcut'.*",
                command("pair_style eq/elastic"););
-  TEST_FAILURE(".*ERROR: Pair style eq/elastic: rcut must be > 0 \\(got -1\\).*",
+  TEST_FAILURE(".*ERROR: Pair style eq/elastic: rcut must be a finite number > 0 \\(got -1\\).*",
                command("pair_style eq/elastic -1"););
+  TEST_FAILURE(".*ERROR: Pair style eq/elastic: rcut must be a finite number > 0 \\(got 1e999\\).*",
+               command("pair_style eq/elastic 1e999"););
   BEGIN_HIDE_OUTPUT();
   command("pair_style eq/elastic 3.0");
   END_HIDE_OUTPUT();
@@ -66,8 +68,14 @@ TEST_F(EQInteractErrors, PairStyleAndCoeffs)
                command("pair_coeff 1 1 abc 3.0"););
   TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1 1: lambda_c 'x' is not a number > 0.*",
                command("pair_coeff 1 1 0.1 x"););
-  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1 1: rcut must be > 0 \\(got 0\\).*",
+  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1 1: rcut must be a finite number > 0 "
+               "\\(got 0\\).*",
                command("pair_coeff 1 1 0.1 3.0 0"););
+  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1 1: rcut must be a finite number > 0 "
+               "\\(got 1e999\\).*",
+               command("pair_coeff 1 1 0.1 3.0 1e999"););
+  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1 1: ftilde must be >= 0.*",
+               command("pair_coeff 1 1 1e999 3.0"););
   TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1 1: wrong number of values.*",
                command("pair_coeff 1 1 0.1 3.0 4.0 5.0"););
   TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1 1: cannot open table file "
@@ -118,6 +126,17 @@ TEST_F(EQInteractErrors, PairNeedsContactsAndMixing)
   TEST_FAILURE(".*ERROR: Pair style eq/elastic needs a fix eq/contacts.*", command("run 0 post no"););
   BEGIN_HIDE_OUTPUT();
   command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25");
+  END_HIDE_OUTPUT();
+  // fix adapt would change the extract()ed arrays without effect: refused
+  BEGIN_HIDE_OUTPUT();
+  command("variable f equal 0.05");
+  command("fix a all adapt 1 pair eq/elastic ftilde 1 1 v_f");
+  END_HIDE_OUTPUT();
+  TEST_FAILURE(".*ERROR: Pair style eq/elastic does not support fix adapt \\(its kernels are set "
+               "by pair_coeff\\): change the coefficients with pair_coeff between runs.*",
+               command("run 0 post no"););
+  BEGIN_HIDE_OUTPUT();
+  command("unfix a");
   command("fix d all eq/contacts 1.0 6 threshold uniform 0.75 1.25");
   END_HIDE_OUTPUT();
   TEST_FAILURE(".*ERROR: Pair style eq/elastic found 2 fixes eq/contacts and 0 fixes "
@@ -180,6 +199,16 @@ TEST_F(EQInteractErrors, Quasistatic)
   command("fix q all eq/quasistatic m");
   END_HIDE_OUTPUT();
   TEST_FAILURE(".*ERROR: Fix eq/quasistatic: fix m is a fix nve, not eq/contacts.*",
+               command("run 1 post no"););
+  // the slider must carry every contact
+  BEGIN_HIDE_OUTPUT();
+  command("unfix q");
+  command("group half id <= 10");
+  command("fix q half eq/quasistatic c");
+  END_HIDE_OUTPUT();
+  TEST_FAILURE(".*ERROR: Fix eq/quasistatic: group half leaves 38 contacts of fix c \\(group "
+               "all\\) behind; the advance to the next break assumes that every contact moves "
+               "with the slider: use a group that contains group all.*",
                command("run 1 post no"););
   // every contact broken for good (each step breaks at least one of the
   // 48): nothing left to drive towards

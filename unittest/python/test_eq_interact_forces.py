@@ -132,3 +132,66 @@ def test_single_after_avalanches(tmp_path):
         assert abs(P[step][1][:, 2].sum() - e_ref) < 1e-10 * max(1.0, e_ref), step
         moved += step > 0
     assert moved >= 10
+
+
+def test_field_cleared_without_pair_style(tmp_path):
+    """A run without pair eq/elastic after one with it: the interaction
+    column (f_c[7]) must not keep the old field h_i, which would also
+    mislead fix eq/quasistatic; the contacts keep their stretches."""
+    text = INPUT.read_text() + (
+        "uncompute pe\nuncompute pl\nundump d\nundump p\npair_style none\n"
+        "dump d2 all custom 1 ${out}/after.dump id x y f_c[1] f_c[5] f_c[7]\n"
+        "dump_modify d2 sort id format float %20.16g\nrun 0\n")
+    infile = tmp_path / "in.cleared"
+    infile.write_text(text)
+    eqtools.run_lammps(infile, {"out": tmp_path}, cwd=tmp_path)
+    _, before = read_dump(tmp_path / "atoms.dump")
+    _, after = read_dump(tmp_path / "after.dump")
+    assert np.abs(before[:, 5]).max() > 0.01          # there was a field
+    assert np.all(after[:, 5] == 0.0)
+    assert np.allclose(after[:, 3], before[:, 3], rtol=0, atol=1e-12)  # same stretches
+
+
+RESTART_CASES = {
+    # two types: 1-1 and 2-2 set, 1-2 mixed (geometric) by init_one
+    "mixed-crossover": ["pair_coeff 1 1 0.3 2.0", "pair_coeff 2 2 0.1 3.0 3.2"],
+    "aniso-table": [f"pair_coeff * * table {TABLE} ANISO_TEST 4.0"],
+    "table-and-crossover": [f"pair_coeff 1 1 table {TABLE} CROSSOVER_L3",
+                            "pair_coeff 1 2 0.2 1.5", "pair_coeff 2 2 0.05 2.5"],
+}
+
+
+@pytest.mark.parametrize("case", sorted(RESTART_CASES))
+def test_coefficients_from_restart(tmp_path, case):
+    """read_restart restores every coefficient (crossover, mixed, table
+    and anisotropic kernels, per-pair cutoffs) without pair_coeff: the
+    same fields h_i and forces as before the restart.  (LAMMPS' harness
+    re-issues pair_coeff after read_restart for a style without data-file
+    output, so it does not check this.)"""
+    setup = "\n".join([
+        "units lj", "dimension 2", "atom_style atomic", "boundary p p p",
+        "lattice hex 1.1547005383792515", "region box block 0 12 0 7 -0.5 0.5",
+        "create_box 2 box", "create_atoms 1 box", "set type 1 type/fraction 2 0.4 99",
+        "mass * 1.0", "displace_atoms all random 0.2 0.2 0.0 4321 units box",
+        "pair_style eq/elastic 3.5"] + RESTART_CASES[case] + [
+        "neighbor 0.5 bin",
+        "fix c all eq/contacts 1.0 77 threshold uniform 0.75 1.25 reform gaussian 0.1 0.15 "
+        "start reform"])
+    dump = ("dump d all custom 1 {f} id type f_c[1] f_c[7] fx\n"
+            "dump_modify d sort id format float %20.16g\nrun 0\n")
+    (tmp_path / "in.write").write_text(
+        setup + "\n" + dump.format(f="before.dump") + "write_restart state.restart\n")
+    (tmp_path / "in.read").write_text(
+        "read_restart state.restart\nneighbor 0.5 bin\n"
+        "fix c all eq/contacts 1.0 77 threshold uniform 0.75 1.25 reform gaussian 0.1 0.15 "
+        "start reform\n" + dump.format(f="after.dump"))
+    eqtools.run_lammps(tmp_path / "in.write", cwd=tmp_path)
+    log = eqtools.run_lammps(tmp_path / "in.read", cwd=tmp_path)
+    assert "pair_coeff" not in (tmp_path / "in.read").read_text()
+    _, a = read_dump(tmp_path / "before.dump")
+    _, b = read_dump(tmp_path / "after.dump")
+    assert np.unique(a[:, 1]).size == 2
+    assert np.abs(a[:, 3]).max() > 0.01, log          # a field to compare
+    assert np.array_equal(a[:, :2], b[:, :2])
+    # stretches are recomputed from the restored positions and anchors
+    assert np.allclose(b[:, 2:], a[:, 2:], rtol=0, atol=1e-13)
