@@ -289,7 +289,12 @@ void FixEQContacts::pre_force(int /*vflag*/)
 
 void FixEQContacts::setup(int vflag)
 {
-  if (!pair) mark_departed();
+  if (!pair) {
+    mark_departed();
+    // no interaction in this run: a field left by an earlier run with
+    // pair eq/elastic would be stale (per-atom output, next_event())
+    for (int i = 0; i < atom->nlocal; i++) state[i][INTERACT] = 0.0;
+  }
   if (utils::strmatch(update->integrate_style, "^verlet"))
     post_force(vflag);
   else {
@@ -738,10 +743,14 @@ void FixEQContacts::interact_step(bool allow_breaks)
 /* ----------------------------------------------------------------------
    one break of contact i whose effective stretch e = x_i + h_i/k_i has
    reached its threshold.  exact crossing carries the overshoot e - x_s
-   (the slider's advance past the break) into the new contact.  reform_as
-   stretch: the new spring has stretch r; force: the new contact carries
-   force k_i r, the interaction with its partners included.
-   Returns the new stretch.
+   into the new contact: the load that took the contact past its
+   threshold (the slider's advance, or in a later avalanche round the
+   field jump from partners that broke) is continuous, the contact breaks
+   where it reaches x_s and the rest of the load goes on to the new
+   contact; its force drops by exactly k_i (x_s - r) (Abelian cascade).
+   step crossing carries nothing.  reform_as stretch: the new spring has
+   stretch r (+ carry); force: the new contact carries force k_i r (+ carry),
+   the interaction with its partners included.  Returns the new stretch.
 ------------------------------------------------------------------------- */
 
 double FixEQContacts::break_once(int i, double e)
