@@ -91,22 +91,25 @@ def accuracy_table(kappa, xmax, out):
     print(f"\nrun time vs error, N = 4080, kappa = {kappa}, lambda_c = 3, X in [0, {xmax}]; "
           f"errors of F/(N k_c) against the quasi-static run: at the step ends, and of F(X) "
           f"on a 0.001 grid (linear between step ends)")
-    print(f"{'reform_as':>9} {'drive':>12} {'steps':>6} {'time s':>7} {'step ends':>10} "
-          f"{'grid rms':>9} {'grid max':>9} {'breaks/step':>11}")
-    for rmode in ("force", "stretch"):
-        tq, dq = run(f"qs_{rmode}", drive="qs", dX=0.05, rmode=rmode)
+    print(f"{'reform_as':>9} {'crossing':>8} {'drive':>12} {'steps':>6} {'time s':>7} "
+          f"{'step ends':>10} {'grid rms':>9} {'grid max':>9} {'breaks/step':>11}")
+    # reform_as force with crossing exact (default: Abelian cascade) and
+    # with crossing step (the reset of induced breaks), reform_as stretch
+    for rmode, crossing in (("force", "exact"), ("force", "step"), ("stretch", "exact")):
+        tag = f"{rmode}_{crossing}"
+        tq, dq = run(f"qs_{tag}", drive="qs", dX=0.05, rmode=rmode, crossing=crossing)
         ref = f_on_grid(dq, fine, True)
         b = dq[:, 4]
-        print(f"{rmode:>9} {'quasistatic':>12} {len(dq):>6} {tq:>7.2f} {0.0:>10.1e} {0.0:>9.1e} "
-              f"{0.0:>9.1e} {b[b > 0].mean():>11.2f}")
+        print(f"{rmode:>9} {crossing:>8} {'quasistatic':>12} {len(dq):>6} {tq:>7.2f} "
+              f"{0.0:>10.1e} {0.0:>9.1e} {0.0:>9.1e} {b[b > 0].mean():>11.2f}")
         for dX in (0.04, 0.01, 0.004, 0.001):
-            t, d = run(f"step{dX}_{rmode}", drive="step", dX=dX, rmode=rmode)
+            t, d = run(f"step{dX}_{tag}", drive="step", dX=dX, rmode=rmode, crossing=crossing)
             m = d[:, 1] > 0
             ends = np.max(np.abs(f_on_grid(dq, d[m, 1], True) - d[m, 2]))
             e = np.interp(fine, d[:, 1], d[:, 2]) - ref
             b = d[:, 4]
-            print(f"{rmode:>9} {'step %g' % dX:>12} {len(d):>6} {t:>7.2f} {ends:>10.1e} "
-                  f"{np.sqrt(np.mean(e * e)):>9.1e} {np.max(np.abs(e)):>9.1e} "
+            print(f"{rmode:>9} {crossing:>8} {'step %g' % dX:>12} {len(d):>6} {t:>7.2f} "
+                  f"{ends:>10.1e} {np.sqrt(np.mean(e * e)):>9.1e} {np.max(np.abs(e)):>9.1e} "
                   f"{b[b > 0].mean():>11.2f}")
 
 

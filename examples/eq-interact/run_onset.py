@@ -6,7 +6,7 @@ with the paper's c1 = 33.9, c2 = 3.0, kappa_c = 0.074 and with beta0, eps0
 fitted per kappa (and c1, c2, kappa_c fitted to those); and the avalanche
 regime above kappa_c (abrupt drop of F, system-size avalanches).
 
-    /usr/bin/python3 run_onset.py [--kappas ...] [--out out]
+    /usr/bin/python3 run_onset.py [--kappas ...] [--crossing step] [--out out]
 
 The comparison covers the initial part of F(X) that Eq. mf.eq15 describes:
 X from 0.7 to the first minimum after the static peak.
@@ -25,11 +25,13 @@ from eqtools import meanfield as mf  # noqa: E402
 N = 4080
 
 
-def run_eq(kappa, out, seed=4711, xmax=2.0, dxmax=0.005, nprocs=1):
-    d = Path(out) / ("onset_k%g_s%d" % (kappa, seed))
+def run_eq(kappa, out, seed=4711, xmax=2.0, dxmax=0.005, nprocs=1, crossing="exact"):
+    d = Path(out) / ("onset_k%g_s%d%s" % (kappa, seed, "" if crossing == "exact" else "_" + crossing))
     d.mkdir(parents=True, exist_ok=True)
     eqtools.run_lammps(HERE / "in.eq-interact",
-                       {"kappa": kappa, "seed": seed, "Xmax": xmax, "dX": dxmax, "out": d},
+                       {"kappa": kappa, "seed": seed, "Xmax": xmax, "dX": dxmax, "out": d,
+                        "contacts": "threshold uniform 0.75 1.25 reform delta 0.0 crossing "
+                                    + crossing},
                        nprocs=nprocs, cwd=d)
     F = eqtools.load(d / "F.dat")
     av = np.atleast_2d(np.loadtxt(d / "avalanches.dat"))
@@ -77,6 +79,9 @@ def main():
     ap.add_argument("--avalanche-kappas", type=float, nargs="+", default=[0.1, 0.2])
     ap.add_argument("--out", default=str(HERE / "out"))
     ap.add_argument("--nofit", action="store_true", help="skip the beta0, eps0 fits")
+    ap.add_argument("--crossing", choices=["exact", "step"], default="exact",
+                    help="fix eq/contacts crossing (step: a break carries no overshoot, also "
+                         "not that of the field jump of an avalanche round)")
     args = ap.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -84,7 +89,7 @@ def main():
 
     rows = []
     for k in args.kappas + args.avalanche_kappas:
-        X, F, av = run_eq(k, out)
+        X, F, av = run_eq(k, out, crossing=args.crossing)
         r = {"kappa": k, "X": X, "F": F, "largest": int(av[:, 1].max()) if av.size else 0,
              "drop": float(np.max(-np.diff(F)))}
         if mf.onset_defined(k) and k in args.kappas:
@@ -99,8 +104,8 @@ def main():
                 r.update(Xf=Xf, Ff=Ff)
         rows.append(r)
 
-    lines = ["# Fig. mf.B03: N = %d, onset from relaxed contacts; paper c1, c2, kappa_c = %s" %
-             (N, mf.PAPER_C),
+    lines = ["# Fig. mf.B03: N = %d, onset from relaxed contacts, crossing %s; paper c1, c2, "
+             "kappa_c = %s" % (N, args.crossing, mf.PAPER_C),
              "# kappa  X_min  rms(paper c)  max(paper c) | fit: beta0 eps0 rms | largest avalanche, "
              "largest one-step drop of F/(N k_c)"]
     fits = [r for r in rows if "fit" in r]
@@ -125,7 +130,8 @@ def main():
         lines.append("# fitted c1 = %.2f  c2 = %.3f  kappa_c = %.4f" % (c1, c2, kc))
     text = "\n".join(lines)
     print(text)
-    (out / "onset_summary.txt").write_text(text + "\n")
+    tag = "" if args.crossing == "exact" else "_" + args.crossing
+    (out / ("onset_summary%s.txt" % tag)).write_text(text + "\n")
 
     import matplotlib
     matplotlib.use("Agg")
@@ -145,8 +151,8 @@ def main():
                  fontsize=9)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(out / "onset.png", dpi=110)
-    print("wrote", out / "onset.png")
+    fig.savefig(out / ("onset%s.png" % tag), dpi=110)
+    print("wrote", out / ("onset%s.png" % tag))
 
 
 if __name__ == "__main__":
