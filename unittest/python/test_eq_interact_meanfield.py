@@ -31,11 +31,11 @@ N = 4080
 MODEL_ALLOWANCE = 0.03
 
 
-def steady_hist(tmp, kappa, seed=4711, xmax=5.0, xhist=2.0):
-    d = tmp / ("k%g" % kappa)
+def steady_hist(tmp, kappa, seed=4711, xmax=5.0, xhist=2.0, lam=3.0):
+    d = tmp / ("k%g_l%g" % (kappa, lam))
     d.mkdir(parents=True, exist_ok=True)
     eqtools.run_lammps(INPUT, {"kappa": kappa, "seed": seed, "Xmax": xmax, "Xhist": xhist,
-                               "out": d}, cwd=d)
+                               "lam": lam, "out": d}, cwd=d)
     c, n, tot = eqtools.read_histo(d / "Qs.dat")
     return c, n / tot / (c[1] - c[0])
 
@@ -114,6 +114,24 @@ def test_steady_state_mean_field(tmp_path):
     assert abs(fa / (kappa * mf.lattice_sum(3.0) * xmean / fb) - 1.0) < 0.05
 
 
+def test_steady_state_mean_field_lambda5(tmp_path):
+    """lambda_c = rcut = 5a (88 neighbours): the fitted narrowing beta and
+    shift alpha follow the mean field with the lattice sum of that radius,
+    S = sum_j a/r_j = 32.13 (measured at kappa = 0.03: beta 1.9671 vs
+    1.9639, alpha 0.2544 vs 0.2522).  Bounds as for lambda_c = 3a."""
+    kappa, S5 = 0.03, mf.lattice_sum(5.0)
+    c, q = steady_hist(tmp_path, kappa, lam=5.0)
+    # start from the paper's forms at the same mean-field strength
+    a, b, g = mf.steady_params(kappa * S5 / mf.lattice_sum(3.0))
+    (fa, fb, fg), _ = mf.fit_steady(c, q, [a, b, g])
+    beta_mf = 1.0 + kappa * S5
+    assert abs(fb / beta_mf - 1.0) < 0.03, (fb, beta_mf)
+    xmean = float(np.sum(c * q) / np.sum(q))
+    assert abs(fa / (kappa * S5 * xmean / fb) - 1.0) < 0.05
+    # lambda_c = 3a at the same kappa would be far narrower than the fit says
+    assert abs(fb / (1.0 + kappa * mf.lattice_sum(3.0)) - 1.0) > 0.1
+
+
 def test_onset_and_breakdown(tmp_path):
     def onset(kappa):
         d = tmp_path / ("onset%g" % kappa)
@@ -129,6 +147,12 @@ def test_onset_and_breakdown(tmp_path):
     m = (X >= 0.7) & (X <= 1.1)
     rms = float(np.sqrt(np.mean((F[m] - np.interp(X[m], Xm, Fm)) ** 2)))
     assert rms < 0.05, rms          # measured 0.033 (paper c1, c2, kappa_c)
+    # ... and better than the non-interacting ME (measured 0.097) by more
+    # than 5 standard errors of F/(N k_c), sd(x) / sqrt(N) with sd(x) at
+    # most that of the thresholds, 0.5 / sqrt(12)
+    Xm0, Fm0, _ = mf.solve_onset(0.0, tmp_path / "me0", xmax=1.3)
+    rms0 = float(np.sqrt(np.mean((F[m] - np.interp(X[m], Xm0, Fm0)) ** 2)))
+    assert rms0 - rms > 5 * 0.5 / math.sqrt(12 * N), (rms0, rms)
     assert av[:, 1].max() < 0.01 * N
     # below kappa_c ~ 0.074: avalanches stay small against N ...
     _, F5, av5 = onset(0.05)
