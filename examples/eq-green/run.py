@@ -12,7 +12,9 @@ Writes into out/ and prints a summary:
   eq-green-crossover.png  crossover length lambda of the slip kernel against
                     gamma1, compared with lambda_c = a / gamma1 (Eq. int.eq30),
                     and the near-zone strength kappa_tilde
-  crossover.dat     gamma1 lambda lambda*gamma1 kappa_tilde_x near_exp far_exp
+  crossover.dat     gamma1 lambda lambda*gamma1 kappa_tilde_x near_exp far_exp ...
+                    (kappa_tilde_x nan where the near zone holds no window
+                    2 <= r <= 3, gamma1 > 1/12)
 
   ./run.py                  everything (about a minute)
   ./run.py --tables         also regenerate the tables in potentials/
@@ -39,6 +41,11 @@ TABLES = [
     ("eq_green_g0.06_r30.table", "EQ_GREEN_G0.06_R30", ["gamma1", 0.06, "rmax", 30]),
 ]
 TABLE_LATTICE = ["L", 257, "gamma2", 0.3, "sigma", SIGMA]
+
+
+def kt_str(x, fmt):
+    """kappa_tilde_x as printed: n/a where eq-green reports none (nan)."""
+    return "n/a".rjust(len(format(1e-3, fmt))) if math.isnan(x) else format(x, fmt)
 
 
 def fit(r, y, lo, hi):
@@ -180,7 +187,8 @@ def plot(out, a02, sw):
     ax[0].set_xlabel(r"$\gamma_1$")
     ax[0].set_ylabel(r"crossover length / a")
     ax[0].legend(fontsize=8)
-    ax[1].loglog(g, sw[:, 3], "o", label=r"local $\langle r k_x(r)\rangle/(k_c a)$, $2 \leq r \leq \lambda_c/4$")
+    ax[1].loglog(g, sw[:, 3], "o",    # nan (not drawn) for gamma1 > 1/12
+                 label=r"local $\langle r k_x(r)\rangle/(k_c a)$, $2 \leq r \leq \lambda_c/4$")
     ax[1].loglog(g, sw[:, 10], "s", mfc="none", label=r"near-zone amplitude of the continuum fit")
     ax[1].loglog(g, g * (1 + SIGMA) / math.pi, "--", label=r"first order $\gamma_1(1+\sigma)/\pi$")
     ax[1].set_xlabel(r"$\gamma_1$")
@@ -210,7 +218,7 @@ def main(argv=None):
         nf = f"{d['near'][0]:7.3f} ({d['near'][2]:2d})" if d["near"] else "   -        "
         ff = f"{d['far'][0]:7.3f} ({d['far'][2]:2d})" if d["far"] else "   -        "
         print(f"  {g:<6}  {1 / g:8.2f}  {d['df'][0]:.5e}  {d['dfl'][0]:.5e}  {nf}    {ff}"
-              f"   {s['kappa_tilde_x']:.2e}  {int(s['iterations_state']):5d}  "
+              f"   {kt_str(s['kappa_tilde_x'], '.2e')}  {int(s['iterations_state']):5d}  "
               f"{s['seconds_total']:.2f}")
     sw = sweep(out)
     np.savetxt(out / "crossover.dat", sw,
@@ -223,11 +231,12 @@ def main(argv=None):
           "  first order  fit amp.  near exp  far exp")
     for row in sw:
         print(f"  {row[0]:<6} {row[1]:7.3f}  {row[2]:7.4f}  ({row[6]:.4f})    "
-              f"{row[7] * row[0]:7.4f}  ({row[8]:.3f})        {row[3]:.4e}     "
+              f"{row[7] * row[0]:7.4f}  ({row[8]:.3f})        {kt_str(row[3], '.4e')}     "
               f"{row[0] * (1 + SIGMA) / math.pi:.4e}   {row[10]:.4e}  {row[4]:7.3f}  {row[5]:7.3f}")
-    print("  (kappa_tilde: kappa_tilde_x = local <r k_x> over 2 <= r <= min(lambda/4, rmax); "
-          "first order = gamma1 (1+sigma)/pi; fit amp. = near-zone amplitude A lambda/(2 pi) "
-          "of the fit)")
+    print("  (kappa_tilde: kappa_tilde_x = local <r k_x> over 2 <= r <= min(lambda_c/4, rmax), "
+          "lambda_c = a/gamma1, n/a where that window holds no r = 2..3 (gamma1 > 1/12: no "
+          "near zone on the lattice); first order = gamma1 (1+sigma)/pi; fit amp. = near-zone "
+          "amplitude A lambda/(2 pi) of the fit)")
     lo, hi = 1 / (2 * (1 + SIGMA)), 1 / (2 * (1 + SIGMA) * (1 - SIGMA))
     print(f"  lambda * gamma1 = {sw[:, 2].mean():.3f} +- {sw[:, 2].std():.3f} "
           f"(range {sw[:, 2].min():.3f} - {sw[:, 2].max():.3f}) over the sweep: the form of "

@@ -84,6 +84,54 @@ TEST(GreenBlock, LandauLifshitzElementsAndSymmetry)
   EXPECT_NEAR(g0(2, 2), gx(2, 2), 1e-14);
 }
 
+// The full 3 x 3 block at off-axis points (where xy, yz and the x-y
+// asymmetry of xx, yy are all nonzero) against the paper's Eq. int.eq02,
+// written out here independently of green_block: the Landau-Lifshitz tensor
+// of each substrate with its own Young modulus, the bottom one with the
+// opposite sign of the xz / zx (and yz / zy) elements, summed and scaled by
+// E_* a (E_*^-1 = E_top^-1 + E_bottom^-1).
+TEST(GreenBlock, OffAxisFullBlockAgainstPaperEq02)
+{
+  const double Etop = 1.0, Ebot = 3.0;
+  const double Estar = 1.0 / (1.0 / Etop + 1.0 / Ebot);    // 0.75
+  for (double sg : {0.3, 0.25, -0.2})
+    for (const auto &d : {std::make_pair(3.0, 2.0), std::make_pair(-1.5, 2.5),
+                          std::make_pair(2.0, -3.0), std::make_pair(-4.0, -1.0)}) {
+      const double x = d.first, y = d.second, r = std::sqrt(x * x + y * y);
+      // one substrate, Eq. int.eq02 (u_i = G_ij f_j, x = x_i - x_j)
+      auto LL = [&](double E, double zsign) {
+        const double g = (1 + sg) / (2 * PI * E * r);
+        Eigen::Matrix3d G;
+        G(0, 0) = g * (2 * (1 - sg) + 2 * sg * x * x / (r * r));
+        G(0, 1) = 2 * g * sg * x * y / (r * r);
+        G(1, 0) = G(0, 1);
+        G(1, 1) = g * (2 * (1 - sg) + 2 * sg * y * y / (r * r));
+        G(0, 2) = -zsign * g * (1 - 2 * sg) * x / r;
+        G(1, 2) = -zsign * g * (1 - 2 * sg) * y / r;
+        G(2, 0) = -G(0, 2);
+        G(2, 1) = -G(1, 2);
+        G(2, 2) = 2 * g * (1 - sg);
+        return G;
+      };
+      const Eigen::Matrix3d expect = Estar * (LL(Etop, +1.0) + LL(Ebot, -1.0));
+      GreenParams p = params(9, 0.1, false, Estar / Etop - Estar / Ebot);    // m = 0.5
+      p.sigma = sg;
+      const Eigen::Matrix3d g = green_block(x, y, p);
+      EXPECT_LT((g - expect).cwiseAbs().maxCoeff(), 1e-15) << "sigma " << sg << " at " << x << ","
+                                                           << y << "\n" << g << "\n" << expect;
+      // identical substrates: the z coupling vanishes
+      p.mismatch = 0.0;
+      const Eigen::Matrix3d e0 = 0.5 * (LL(1.0, +1.0) + LL(1.0, -1.0));    // E_* = E / 2
+      EXPECT_LT((green_block(x, y, p) - e0).cwiseAbs().maxCoeff(), 1e-15);
+      EXPECT_EQ(green_block(x, y, p)(0, 2), 0.0);
+    }
+  // one value by hand: (3, 2), sigma = 0.3, m = 0: xy = 2 (1.3 / (2 pi sqrt 13))
+  // * 0.3 * 6 / 13 (both substrates, times E_* = E / 2)
+  GreenParams p = params(9, 0.1);
+  EXPECT_NEAR(green_block(3.0, 2.0, p)(0, 1), 2 * 1.3 / (2 * PI * std::sqrt(13.0)) * 0.3 * 6 / 13,
+              1e-16);
+}
+
 TEST(GreenSolver, FFTConvolutionEqualsDenseProduct)
 {
   for (bool periodic : {false, true})
@@ -220,9 +268,10 @@ TEST(GreenRemoval, SymmetryOfForceChanges)
 
 TEST(GreenRemoval, ForceBalance)
 {
-  // Betti reciprocity: sum_i dF_ix = -f_j^2 / z_jj (the slip response z is a
-  // column of (1 + K G)^-1, and f = (1 + K G)^-1 K U0 by the same operator);
-  // rigid substrates (gamma1 -> 0): the removed force is simply lost.
+  // Betti reciprocity at the centre (f_y = 0 there): sum_i dF_ix = -f_j^2 / z_jj
+  // (the slip response z is a column of (1 + K G)^-1, and f = (1 + K G)^-1 K
+  // U0 by the same operator); rigid substrates (gamma1 -> 0): the removed
+  // force is simply lost.  Off-centre: GreenRemoval.ReciprocityOffCentre.
   for (double g1 : {0.003, 0.06, 0.8}) {
     GreenSolver s(params(89, g1));
     const int j = s.centre();
@@ -241,6 +290,67 @@ TEST(GreenRemoval, ForceBalance)
   double sum = 0.0;
   for (int i = 0; i < rigid.sites(); ++i) sum += R.df_exact(rigid.index(i, 0));
   EXPECT_NEAR(sum, -1.0, 1e-5);
+}
+
+TEST(GreenRemoval, ReciprocityOffCentre)
+{
+  // General removal (Woodbury): with C = (1 + gamma1 Gh)^-1 and J the nc
+  // components of the removed contact, df = -C_(:,J) C_JJ^-1 f_J and, as
+  // u^T C = f^T, sum_i dF_ix = -f_J^T C_JJ^-1 f_J.  At an off-centre contact
+  // f_y != 0 (and f_z != 0 with mismatch), so the scalar -f_x^2 / C_xx of the
+  // centre is wrong there (measured: 31 x 31, gamma1 0.3, contact (5, 9):
+  // -0.0082506 against the true -0.0082548).
+  struct Case {
+    int L, ix, iy;
+    double g1, m;
+  };
+  for (const Case &c : {Case{31, 5, 9, 0.3, 0.0}, Case{21, 4, 13, 0.3, 0.5}, Case{31, 2, 27, 0.8, 0.0}}) {
+    GreenOptions o;
+    o.tol = 1e-13;
+    GreenSolver s(params(c.L, c.g1, false, c.m), o);
+    const int nc = s.ncomp(), j = s.site(c.ix, c.iy);
+    const GreenRemoval R = green_remove_contact(s, j);
+    std::vector<Eigen::VectorXd> col;
+    for (int b = 0; b < nc; ++b) col.push_back(green_slip_response(s, j, nullptr, b));
+    const Eigen::MatrixXd C = green_site_block(s, j);
+    EXPECT_LT((C - C.transpose()).cwiseAbs().maxCoeff(), 1e-14);
+    Eigen::VectorXd fJ(nc);
+    for (int a = 0; a < nc; ++a) fJ(a) = R.f(s.index(j, a));
+    EXPECT_GT(std::fabs(fJ(1)), 1e-3 * fJ(0)) << "not an off-centre case";
+    if (nc == 3) {
+      EXPECT_GT(std::fabs(fJ(2)), 1e-3 * fJ(0));
+    }
+    // the whole force change from the block
+    const Eigen::VectorXd t = C.ldlt().solve(fJ);
+    Eigen::VectorXd df = Eigen::VectorXd::Zero(nc * s.sites());
+    for (int b = 0; b < nc; ++b) df -= t(b) * col[b];
+    EXPECT_LT(rel_diff(df, R.df_exact), 1e-10) << c.L << " " << c.m;
+    // the sum rule
+    double sum = 0.0;
+    for (int i = 0; i < s.sites(); ++i) sum += R.df_exact(s.index(i, 0));
+    const double rec = green_reciprocity_sum(fJ, C);
+    EXPECT_NEAR(sum, rec, 1e-9 * std::fabs(sum)) << c.L << " " << c.m;
+    // ... which the x-only scalar formula misses by far more than that
+    const double xonly = -fJ(0) * fJ(0) / C(0, 0);
+    EXPECT_GT(std::fabs(xonly - sum), 1e-5 * std::fabs(sum)) << c.L << " " << c.m;
+  }
+  // the block is that of the inverse matrix (dense 9 x 9, mismatch)
+  GreenSolver d(params(9, 0.3, false, 0.5), dense_opt());
+  const int n = d.ncomp() * d.sites(), j = d.site(1, 6);
+  Eigen::MatrixXd A(n, n);
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < n; ++k) {
+    v.setZero();
+    v(k) = 1.0;
+    A.col(k) = v + 0.3 * d.apply_green(v);
+  }
+  const Eigen::MatrixXd Ci = A.inverse();
+  const Eigen::MatrixXd C = green_site_block(d, j);
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      EXPECT_NEAR(C(a, b), 0.5 * (Ci(d.index(j, a), d.index(j, b)) + Ci(d.index(j, b), d.index(j, a))),
+                  1e-12);
+  EXPECT_THROW(green_slip_response(GreenSolver(params(9, 0.3)), 0, nullptr, 2), std::invalid_argument);
 }
 
 TEST(GreenKernel, FirstOrderNearField)
@@ -399,4 +509,102 @@ TEST(GreenSolver, BadInputIsRejected)
   EXPECT_THROW(bad.solve(std::vector<double>(bad.sites(), 1.0),
                          Eigen::VectorXd::Ones(bad.ncomp() * bad.sites())),
                std::runtime_error);
+  GreenOptions nr;
+  nr.max_restarts = -1;
+  EXPECT_THROW(GreenSolver(params(9, 0.06), nr), std::invalid_argument);
+}
+
+namespace {
+// the message of the std::runtime_error thrown by f, "" if none
+template <class F> std::string runtime_error_of(F f)
+{
+  try {
+    f();
+  } catch (const std::runtime_error &e) {
+    return e.what();
+  }
+  return "";
+}
+}    // namespace
+
+TEST(GreenSolver, TrueResidualAndUnattainableTolerance)
+{
+  // CG stops a cycle on the recursive residual; the solve returns only if the
+  // true residual |b - A x| / |b| is below tol (restarting from it), and a
+  // tolerance below the round-off floor (~1e-16) is an error naming tol and
+  // the attainable residual, not a silent success
+  const GreenParams p = params(31, 0.06);
+  const std::vector<double> kappa(31 * 31, 1.0);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(2 * 31 * 31);
+  for (int i = 0; i < 31 * 31; ++i) u(2 * i) = 1.0;
+  for (double tol : {1e-6, 1e-10, 1e-14}) {
+    GreenOptions o;
+    o.tol = tol;
+    GreenSolver s(p, o);
+    GreenSolveStats st;
+    const Eigen::VectorXd f = s.solve(kappa, u, &st);
+    Eigen::VectorXd Af = f + p.gamma1 * s.apply_green(f);
+    EXPECT_LT(st.residual, tol);
+    EXPECT_NEAR(st.residual, (Af - u).norm() / u.norm(), 1e-3 * tol);
+  }
+  GreenOptions o;
+  o.tol = 1e-17;
+  GreenSolver s(p, o);
+  const std::string msg = runtime_error_of([&] { s.solve(kappa, u); });
+  EXPECT_NE(msg.find("tol 1e-17 is below the attainable accuracy"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("use tol >="), std::string::npos) << msg;
+}
+
+TEST(GreenSolver, MaxiterNonConvergenceIsAnError)
+{
+  GreenOptions o;
+  o.maxiter = 3;
+  o.precond = GreenPrecond::NONE;
+  GreenSolver s(params(31, 0.8), o);
+  const std::string msg = runtime_error_of([&] { green_remove_contact(s, s.centre()); });
+  EXPECT_NE(msg.find("did not converge in 3 iterations"), std::string::npos) << msg;
+  // enough iterations: converges
+  o.maxiter = 200;
+  GreenSolver ok(params(31, 0.8), o);
+  GreenRemoval R = green_remove_contact(ok, ok.centre());
+  EXPECT_LT(R.st_state.residual, 1e-12);
+  EXPECT_LE(R.st_state.iterations, 200);
+}
+
+TEST(GreenSolver, CirculantFallsBackToJacobi)
+{
+  // the periodic (circulant) approximation can be indefinite where the open
+  // array is not (stiff contacts, large self-term cutoff): the solver then
+  // preconditions with Jacobi and still solves the system
+  GreenParams p = params(9, 2.0);
+  p.gamma2 = 5.0;
+  GreenSolver s(p), d(p, dense_opt());
+  GreenOptions oj;
+  oj.precond = GreenPrecond::JACOBI;
+  GreenSolver sj(p, oj);
+  EXPECT_FALSE(s.circulant_active());
+  EXPECT_NE(s.describe().find("jacobi (circulant not positive definite)"), std::string::npos);
+  const std::vector<double> kappa(s.sites(), 1.0);
+  const Eigen::VectorXd u = Eigen::VectorXd::Ones(s.ncomp() * s.sites());
+  GreenSolveStats st, stj;
+  const Eigen::VectorXd f = s.solve(kappa, u, &st);
+  EXPECT_LT(rel_diff(f, d.solve(kappa, u)), 1e-10);
+  const Eigen::VectorXd fj = sj.solve(kappa, u, &stj);
+  EXPECT_EQ(st.iterations, stj.iterations);    // the same (Jacobi) iteration
+  EXPECT_LT(rel_diff(f, fj), 1e-14);
+  // the paper's parameters keep the circulant
+  EXPECT_TRUE(GreenSolver(params(9, 0.06)).circulant_active());
+  EXPECT_FALSE(sj.circulant_active());
+  EXPECT_FALSE(d.circulant_active());
+}
+
+TEST(GreenSolver, DenseNotPositiveDefiniteIsAnError)
+{
+  GreenParams p = params(9, 5.0);
+  p.gamma2 = 1.0;
+  GreenSolver d(p, dense_opt());
+  const std::string msg = runtime_error_of([&] {
+    d.solve(std::vector<double>(d.sites(), 1.0), Eigen::VectorXd::Ones(d.ncomp() * d.sites()));
+  });
+  EXPECT_NE(msg.find("dense Green system is not positive definite"), std::string::npos) << msg;
 }

@@ -1,6 +1,7 @@
 """eq-green (surface Green tensor solver, paper Sec. III) through its
 command-line tool and examples/eq-green: dense vs FFT agreement, the
-Sherman-Morrison and reciprocity identities on the printed summary, the
+Sherman-Morrison and reciprocity identities on the printed summary (also
+for an off-centre contact, where f_y != 0), the near-zone strength window, the
 paper's figure int.A02 exponents, the crossover length against Eq. int.eq30,
 the kernel tables shipped in potentials/ (reproducible from their recorded
 command, readable in the pair_style eq/elastic format), and bad input."""
@@ -45,6 +46,63 @@ def test_summary_identities_89(work):
     assert s["f_removed"] == pytest.approx(s["stretch_removed"], rel=1e-10)
     # near-zone amplitude of the continuum fit = first-order kappa_tilde
     assert s["kappa_tilde_x_continuum"] == pytest.approx(s["kappa_tilde_x_first_order"], rel=0.1)
+
+
+@pytest.mark.parametrize("args", [
+    ["L", 31, "gamma1", 0.3, "remove", 5, 9],
+    ["L", 21, "gamma1", 0.3, "mismatch", 0.5, "remove", 4, 13],
+])
+def test_reciprocity_off_centre(work, args):
+    """Betti reciprocity for any removed contact: sum_i dF_ix = -f_J^T B_JJ^-1 f_J
+    with the force vector f_J of the contact and the block B_JJ of (1 + K G)^-1.
+    Off the centre f_y != 0 (and f_z with mismatch); the former printed value
+    -f_x^2 / B_xx was off by 5e-4 relative here (-0.0082506 vs -0.0082548)."""
+    s = eqtools.run_eqgreen(args + ["tol", 1e-13], cwd=work)
+    assert abs(s["f_removed_y"]) > 1e-3 * s["f_removed"]
+    assert s["sum_df_exact"] == pytest.approx(s["sum_df_exact_reciprocity"], rel=1e-9)
+    xonly = -s["f_removed"] ** 2 / s["B_removed"]
+    assert abs(xonly - s["sum_df_exact"]) > 1e-5 * abs(s["sum_df_exact"])
+    assert s["residual_max"] < 1e-13
+    if "mismatch" in args:
+        assert abs(s["f_removed_z"]) > 1e-3 * s["f_removed"]
+        assert "B_removed_zz" in s
+
+
+def test_remove_centre_is_the_default(work):
+    a = eqtools.run_eqgreen(["L", 9, "gamma1", 0.3], cwd=work)
+    b = eqtools.run_eqgreen(["L", 9, "gamma1", 0.3, "remove", "centre"], cwd=work)
+    c = eqtools.run_eqgreen(["L", 9, "gamma1", 0.3, "remove", 4, 4], cwd=work)
+    for k in ("removed_ix", "removed_iy", "sum_df_exact", "f_removed", "kernel_x_r1"):
+        assert a[k] == b[k] == c[k]
+    assert a["removed_ix"] == a["removed_iy"] == 4
+
+
+def test_kappa_tilde_window(work):
+    """The local <r k_x(r)> is averaged over 2 <= r <= min(lambda_c/4, rmax),
+    lambda_c = a/gamma1; reported only where that window holds r = 2 and 3
+    (gamma1 <= 1/12), NaN beyond (formerly a window r = 2..3 was forced,
+    outside the near zone, which gave a spurious 'saturation' at 0.02)."""
+    s = eqtools.run_eqgreen(["L", 89, "gamma1", 0.06], cwd=work)
+    assert s["kappa_tilde_rmax"] == 4
+    assert s["kappa_tilde_x"] == pytest.approx(0.012745, rel=1e-3)     # Fig. int.A10
+    assert s["crossover_lambda_continuum"] == pytest.approx(8.88, rel=2e-3)
+    s = eqtools.run_eqgreen(["L", 89, "gamma1", 0.003], cwd=work)
+    assert s["kappa_tilde_rmax"] == 22
+    assert s["kappa_tilde_x"] == pytest.approx(1.049e-3, rel=1e-3)    # paper: ~1e-3
+    for g in (0.1, 0.2):
+        s = eqtools.run_eqgreen(["L", 41, "gamma1", g], cwd=work)
+        assert math.isnan(s["kappa_tilde_x"]) and math.isnan(s["kappa_tilde_y"])
+        assert s["kappa_tilde_rmax"] == 0
+        assert not math.isnan(s["kappa_tilde_x_continuum"])
+    # a window cut by rmax below r = 3 is not reported either
+    s = eqtools.run_eqgreen(["L", 41, "gamma1", 0.01, "rmax", 2], cwd=work)
+    assert math.isnan(s["kappa_tilde_x"])
+
+
+def test_true_residual_is_reported(work):
+    s = eqtools.run_eqgreen(["L", 31, "tol", 1e-14], cwd=work)
+    assert s["residual_max"] < 1e-14
+    assert s["cg_restarts"] >= 0
 
 
 def test_figure_a02_exponents(work):
@@ -119,7 +177,13 @@ def test_table_is_the_slip_kernel(work):
     (["boundary", "closed"], "keyword boundary: expected open or periodic"),
     (["method", "lu"], "keyword method"),
     (["precond", "ilu"], "keyword precond"),
-    (["L", "9", "remove", "9", "0"], "keyword remove"),
+    (["L", "9", "remove", "9", "0"], "keyword remove: ix iy must both be in [0, L-1] = [0, 8]"),
+    (["L", "9", "remove", "-1", "-1"], "keyword remove: ix iy must both be in [0, L-1] = [0, 8]"),
+    (["L", "9", "remove", "3", "-2"], "got 3 -2"),
+    (["L", "9", "remove", "3"], "keyword remove: missing value"),
+    (["L", "31", "tol", "1e-17"], "tol 1e-17 is below the attainable accuracy"),
+    (["L", "31", "gamma1", "0.8", "precond", "none", "maxiter", "2"],
+     "did not converge in 2 iterations"),
     (["L", "9", "rmax", "7"], "keyword rmax"),
     (["L", "129", "method", "dense"], "dense path limited"),
     (["gamma1"], "missing value"),

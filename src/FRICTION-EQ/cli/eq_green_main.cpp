@@ -12,12 +12,14 @@
      mismatch m          E_* / E_top - E_* / E_bottom (z coupling)        (0)
      boundary open|periodic   finite array or periodic images         (open)
      method fft|dense    FFT + CG, or dense Cholesky (small L)        (fft)
-     dense_limit n       largest number of unknowns of the dense path (8000;
+     dense_limit n       largest number of unknowns of the dense path (8000:
+                         L <= 63, or L <= 51 with mismatch (3 components);
                          L = 89 needs 15842: 1.9 GiB, minutes)
      precond circulant|jacobi|none                                    (circulant)
-     tol t               CG relative residual                         (1e-12)
+     tol t               CG true relative residual |b - A x|/|b|      (1e-12)
      maxiter n           CG iteration limit                           (20000)
-     remove ix iy        removed contact (0-based)                    (centre)
+     remove ix iy        removed contact, 0 <= ix, iy <= L-1          (centre)
+     remove centre       the centre contact (L/2, L/2), as by default
      profile FILE        along +x, +y and the diagonal from the removed
                          contact: dir r df_x df_y (exact) df_x df_y (Eq. 09)
                          kernel_x (slip response -z_x, units of k_c)
@@ -73,7 +75,7 @@ const char *USAGE =
     "usage: eq-green [keyword value ...]\n"
     "keywords: L n | gamma1 g | gamma2 g | sigma s | mismatch m | boundary open|periodic |\n"
     "          method fft|dense | dense_limit n | precond circulant|jacobi|none | tol t | maxiter n |\n"
-    "          remove ix iy | profile FILE | map FILE | table FILE KEYWORD | rmax R |\n"
+    "          remove ix iy|centre | profile FILE | map FILE | table FILE KEYWORD | rmax R |\n"
     "          kc k | aniso yes|no | summary FILE\n"
     "see doc/src/eq_green.rst\n";
 
@@ -89,7 +91,9 @@ int main(int argc, char **argv)
   try {
     GreenParams p;
     GreenOptions o;
-    int rx = -1, ry = -1, rmax = -1;
+    int rx = 0, ry = 0, rmax = -1;
+    bool remove_centre = true;
+    std::string remove_arg;
     double kc = 1.0;
     bool aniso = true;
     std::string profile, map, table, keyword, summary;
@@ -137,9 +141,15 @@ int main(int argc, char **argv)
         else if (v == "no") aniso = false;
         else throw UsageError("keyword aniso: expected yes or no, got '" + v + "'");
       } else if (k == "remove") {
-        rx = integer(k, val(1));
-        ry = integer(k, val(2));
-        ++i;
+        if (val(1) == "centre" || val(1) == "center") {
+          remove_centre = true;
+        } else {
+          rx = integer(k, val(1));
+          ry = integer(k, val(2));
+          remove_centre = false;
+          remove_arg = val(1) + " " + val(2);
+          ++i;
+        }
       } else if (k == "profile") profile = val();
       else if (k == "map") map = val();
       else if (k == "summary") summary = val();
@@ -156,9 +166,13 @@ int main(int argc, char **argv)
     } catch (const std::invalid_argument &e) {
       throw UsageError(e.what());
     }
-    if (rx < 0 && ry < 0) rx = ry = p.L / 2;
-    if (rx < 0 || ry < 0 || rx >= p.L || ry >= p.L)
-      throw UsageError("keyword remove: ix iy must be in [0, L-1] = [0, " + std::to_string(p.L - 1) + "]");
+    if (remove_centre) {
+      rx = ry = p.L / 2;
+    } else if (rx < 0 || ry < 0 || rx >= p.L || ry >= p.L) {
+      throw UsageError("keyword remove: ix iy must both be in [0, L-1] = [0, " +
+                       std::to_string(p.L - 1) + "], got " + remove_arg +
+                       " (omit the keyword, or use 'remove centre', for the centre contact)");
+    }
     const int maxr = std::min(p.L - 1 - rx, p.L - 1 - ry);
     if (rmax < 0) rmax = std::max(1, std::min(p.L / 4, maxr));
     if (rmax < 1 || rmax > maxr)
@@ -168,31 +182,45 @@ int main(int argc, char **argv)
     GreenSolver s(p, o);
     const int j = s.site(rx, ry), nc = s.ncomp();
     const GreenRemoval R = green_remove_contact(s, j);
-    GreenSolveStats sst;
+    GreenSolveStats sst, sblk;
     const Eigen::VectorXd z = green_slip_response(s, j, &sst);
     const GreenKernel K = green_axis_kernel(s, z, j, rmax);
+    // nc x nc block of B = (1 + K G)^-1 at the removed contact (the other
+    // columns from the slip responses along y (and z))
+    const Eigen::MatrixXd Bjj = green_site_block(s, j, &z, &sblk);
 
-    // near-zone interaction strength: <r k_x(r)> for 2 <= r <= rn
+    // near-zone interaction strength: <r k_x(r)> over 2 <= r <= rn, rn =
+    // min(floor(lambda_c / 4), rmax) with lambda_c = a / gamma1 (Eq. int.eq30).
+    // Reported only if that window holds at least r = 2 and 3 (gamma1 <= 1/12
+    // and rmax >= 3); else NaN: for stiffer contacts there is no r^-1 zone
+    // on the lattice to average over (r = 2 already lies beyond lambda_c / 4
+    // for gamma1 > 1/8).
     const double lamc = 1.0 / p.gamma1;
-    const int rn = std::max(3, std::min(int(0.25 * lamc), rmax));
-    double kt = 0.0, kty = 0.0;
-    int nk = 0;
-    for (size_t i = 0; i < K.r.size(); ++i)
-      if (K.r[i] >= 2 && K.r[i] <= rn) {
-        kt += K.r[i] * K.kx[i];
-        kty += K.r[i] * K.ky[i];
-        ++nk;
-      }
-    kt /= std::max(nk, 1);
-    kty /= std::max(nk, 1);
+    const int rn = int(std::min(std::floor(0.25 * lamc), double(rmax)));
+    double kt = NAN, kty = NAN;
+    if (rn >= 3) {
+      kt = kty = 0.0;
+      int nk = 0;
+      for (size_t i = 0; i < K.r.size(); ++i)
+        if (K.r[i] >= 2 && K.r[i] <= rn) {
+          kt += K.r[i] * K.kx[i];
+          kty += K.r[i] * K.ky[i];
+          ++nk;
+        }
+      kt /= nk;
+      kty /= nk;
+    }
 
-    // force balance (Betti reciprocity): sum_i dF_ix = -f_jx^2 / (k_c u0 z_jx)
+    // force balance (Betti reciprocity): sum_i dF_ix = -f_J^T B_JJ^-1 f_J
+    // with f_J = (f_x, f_y[, f_z]) of the removed contact, B_JJ its block
     double sum_exact = 0.0, sum_linear = 0.0;
     for (int i = 0; i < s.sites(); ++i) {
       sum_exact += R.df_exact(s.index(i, 0));
       sum_linear += R.df_linear(s.index(i, 0));
     }
-    const double fj = R.f(s.index(j, 0)), zj = z(s.index(j, 0));
+    Eigen::VectorXd fJ(nc);
+    for (int a = 0; a < nc; ++a) fJ(a) = R.f(s.index(j, a));
+    const double fj = fJ(0), zj = z(s.index(j, 0));
     double ftot = 0.0;
     for (int i = 0; i < s.sites(); ++i) ftot += R.f(s.index(i, 0));
 
@@ -220,17 +248,31 @@ int main(int argc, char **argv)
     put("iterations_removed", R.st_removed.iterations);
     put("iterations_linear", R.st_linear.iterations);
     put("residual_max", std::max({R.st_state.residual, R.st_removed.residual, R.st_linear.residual,
-                                  sst.residual}));
+                                  sst.residual, sblk.residual}));
+    put("cg_restarts", std::max({R.st_state.restarts, R.st_removed.restarts, R.st_linear.restarts,
+                                 sst.restarts, sblk.restarts}));
     put("seconds_state", R.st_state.seconds);
-    put("seconds_total", R.st_state.seconds + R.st_removed.seconds + R.st_linear.seconds + sst.seconds);
+    put("seconds_total", R.st_state.seconds + R.st_removed.seconds + R.st_linear.seconds +
+                             sst.seconds + sblk.seconds);
     put("operator_MB", s.memory_bytes() / 1048576.0);
     put("peak_rss_MB", peak_rss_bytes() / 1048576.0);
     put("total_force", ftot);
+    put("removed_ix", rx);
+    put("removed_iy", ry);
     put("f_removed", fj);
+    put("f_removed_y", fJ(1));
+    if (nc == 3) put("f_removed_z", fJ(2));
     put("stretch_removed", R.stretch(s.index(j, 0)));
     put("B_removed", zj);
+    put("B_removed_xy", Bjj(0, 1));
+    put("B_removed_yy", Bjj(1, 1));
+    if (nc == 3) {
+      put("B_removed_xz", Bjj(0, 2));
+      put("B_removed_yz", Bjj(1, 2));
+      put("B_removed_zz", Bjj(2, 2));
+    }
     put("sum_df_exact", sum_exact);
-    put("sum_df_exact_reciprocity", -fj * fj / zj);
+    put("sum_df_exact_reciprocity", green_reciprocity_sum(fJ, Bjj));
     put("sum_df_linear", sum_linear);
     put("df_x_r1_exact", dfx[0]);
     put("df_x_r1_linear", R.df_linear(s.index(s.site(rx + 1, ry), 0)));
@@ -238,6 +280,7 @@ int main(int argc, char **argv)
     put("kernel_y_r1", K.ky[0]);
     put("kappa_tilde_x", kt);
     put("kappa_tilde_y", kty);
+    put("kappa_tilde_rmax", rn >= 3 ? rn : 0);
     put("kappa_tilde_x_first_order", p.gamma1 * (1.0 + p.sigma) / M_PI);
     put("kappa_tilde_y_first_order", p.gamma1 * (1.0 + p.sigma) * (1.0 - p.sigma) / M_PI);
     put("crossover_lambda", cf.lambda);
@@ -252,7 +295,13 @@ int main(int argc, char **argv)
     std::ostringstream txt;
     txt << "eq-green: " << p.L << " x " << p.L << " contacts, " << s.describe() << "\n";
     txt << std::setprecision(8);
-    for (const auto &n : order) txt << "  " << std::left << std::setw(28) << n << " " << v[n] << "\n";
+    for (const auto &n : order) {
+      txt << "  " << std::left << std::setw(28) << n << " ";
+      if (std::isnan(v[n]))
+        txt << "n/a\n";    // (the summary file writes nan)
+      else
+        txt << v[n] << "\n";
+    }
     std::fputs(txt.str().c_str(), stdout);
 
     auto open = [](const std::string &f) {

@@ -28,10 +28,10 @@ double now()
   return std::chrono::duration<double>(clk::now().time_since_epoch()).count();
 }
 
-std::string num(double v)
+std::string num(double v, int digits = 12)
 {
   std::ostringstream s;
-  s << std::setprecision(12) << v;
+  s << std::setprecision(digits) << v;
   return s.str();
 }
 
@@ -160,6 +160,8 @@ GreenSolver::GreenSolver(const GreenParams &p, const GreenOptions &o) : par(p), 
   if (!(opt.tol > 0.0)) throw std::invalid_argument("tol must be > 0, got " + num(opt.tol));
   if (opt.maxiter < 1)
     throw std::invalid_argument("maxiter must be >= 1, got " + std::to_string(opt.maxiter));
+  if (opt.max_restarts < 0)
+    throw std::invalid_argument("max_restarts must be >= 0, got " + std::to_string(opt.max_restarts));
   nc = par.mismatch == 0.0 ? 2 : 3;
   const int N = sites();
   diag_g.resize(nc * N);
@@ -294,6 +296,12 @@ std::string GreenSolver::describe() const
       s << (opt.precond == GreenPrecond::JACOBI ? "jacobi" : "none");
   }
   return s.str();
+}
+
+bool GreenSolver::circulant_active() const
+{
+  return opt.method == GreenMethod::FFT && opt.precond == GreenPrecond::CIRCULANT && fft &&
+      fft->precond_ok;
 }
 
 Eigen::VectorXd GreenSolver::apply_green(const Eigen::VectorXd &v) const
@@ -432,7 +440,17 @@ Eigen::VectorXd GreenSolver::solve_dense(const std::vector<double> &kappa, const
 }
 
 // preconditioned conjugate gradients on the active sites (inactive entries
-// of every vector are kept at zero, so the operator stays symmetric)
+// of every vector are kept at zero, so the operator stays symmetric).
+//
+// A CG cycle stops when the recursive residual r (updated as r -= alpha A p)
+// drops below tol.  The recursive residual drifts from the true one,
+// b - A x, by round-off (about eps times the condition number), so the true
+// residual is then computed once; it is the one reported and the one the
+// tolerance applies to, with no margin: a solve returns only if
+// |b - A x| / |b| < tol.  Otherwise CG restarts from the true residual (at
+// most max_restarts times, within maxiter iterations in all); a restart that
+// does not halve the true residual means it has reached its round-off floor,
+// and the solve fails with an error naming tol and the attainable residual.
 Eigen::VectorXd GreenSolver::solve_cg(const std::vector<double> &kappa, const Eigen::VectorXd &u,
                                       GreenSolveStats *stats) const
 {
@@ -451,39 +469,56 @@ Eigen::VectorXd GreenSolver::solve_cg(const std::vector<double> &kappa, const Ei
   Eigen::VectorXd x = Eigen::VectorXd::Zero(nc * N);
   const double bn = b.norm();
   stats->iterations = 0;
+  stats->restarts = 0;
   stats->residual = 0.0;
   if (bn == 0.0) return x;
   Eigen::VectorXd r = b, z, p, Ap;
-  precondition(kappa, r, z);
-  p = z;
-  double rz = r.dot(z);
-  int it = 0;
-  double rel = 1.0;
-  while (it < opt.maxiter) {
-    Ap = op(p);
-    const double pAp = p.dot(Ap);
-    if (!(pAp > 0.0))
-      throw std::runtime_error("Green operator is not positive definite (CG curvature " + num(pAp) +
-                               "); gamma2 too large for this lattice?");
-    const double alpha = rz / pAp;
-    x += alpha * p;
-    r -= alpha * Ap;
-    ++it;
-    rel = r.norm() / bn;
-    if (!std::isfinite(rel)) throw std::runtime_error("Green CG diverged (non-finite residual)");
-    if (rel < opt.tol) break;
+  int it = 0, restarts = 0;
+  double truerel = 1.0, prev = HUGE_VAL;
+  for (;;) {
+    // one CG cycle from (x, r)
     precondition(kappa, r, z);
-    const double rz1 = r.dot(z);
-    p = z + (rz1 / rz) * p;
-    rz = rz1;
+    p = z;
+    double rz = r.dot(z);
+    double rel = r.norm() / bn;
+    while (rel >= opt.tol && it < opt.maxiter) {
+      Ap = op(p);
+      const double pAp = p.dot(Ap);
+      if (!(pAp > 0.0))
+        throw std::runtime_error("Green operator is not positive definite (CG curvature " + num(pAp) +
+                                 "); gamma2 too large for this lattice?");
+      const double alpha = rz / pAp;
+      x += alpha * p;
+      r -= alpha * Ap;
+      ++it;
+      rel = r.norm() / bn;
+      if (!std::isfinite(rel)) throw std::runtime_error("Green CG diverged (non-finite residual)");
+      if (rel < opt.tol) break;
+      precondition(kappa, r, z);
+      const double rz1 = r.dot(z);
+      p = z + (rz1 / rz) * p;
+      rz = rz1;
+    }
+    // the true residual
+    r = b - op(x);
+    truerel = r.norm() / bn;
+    if (truerel < opt.tol) break;
+    if (it >= opt.maxiter)
+      throw std::runtime_error("Green CG did not converge in " + std::to_string(opt.maxiter) +
+                               " iterations (true relative residual " + num(truerel, 3) + ", tol " +
+                               num(opt.tol) + "); raise maxiter or tol");
+    if (restarts >= opt.max_restarts || !(truerel < 0.5 * prev))
+      throw std::runtime_error(
+          "Green CG: tol " + num(opt.tol) + " is below the attainable accuracy: the true relative "
+          "residual |b - A x|/|b| stays at " + num(truerel, 3) + " (round-off floor; the recursive CG "
+          "residual is below tol) after " + std::to_string(restarts) + " restart(s) from the true "
+          "residual; use tol >= " + num(10.0 * truerel, 2));
+    prev = truerel;
+    ++restarts;
   }
-  // true residual
-  const double truerel = (op(x) - b).norm() / bn;
   stats->iterations = it;
+  stats->restarts = restarts;
   stats->residual = truerel;
-  if (rel >= opt.tol && truerel >= opt.tol)
-    throw std::runtime_error("Green CG did not converge in " + std::to_string(opt.maxiter) +
-                             " iterations (relative residual " + num(truerel) + ")");
   return x;
 }
 
@@ -516,13 +551,48 @@ GreenRemoval green_remove_contact(const GreenSolver &s, int removed)
   return R;
 }
 
-Eigen::VectorXd green_slip_response(const GreenSolver &s, int j, GreenSolveStats *st)
+Eigen::VectorXd green_slip_response(const GreenSolver &s, int j, GreenSolveStats *st, int comp)
 {
   const int N = s.sites();
   if (j < 0 || j >= N) throw std::invalid_argument("slip site out of range");
+  if (comp < 0 || comp >= s.ncomp())
+    throw std::invalid_argument("slip component must be in [0, " + std::to_string(s.ncomp() - 1) +
+                                "], got " + std::to_string(comp));
   Eigen::VectorXd e = Eigen::VectorXd::Zero(s.ncomp() * N);
-  e(s.index(j, 0)) = 1.0;
+  e(s.index(j, comp)) = 1.0;
   return s.solve(std::vector<double>(N, 1.0), e, st);
+}
+
+Eigen::MatrixXd green_site_block(const GreenSolver &s, int j, const Eigen::VectorXd *zx,
+                                 GreenSolveStats *st)
+{
+  const int nc = s.ncomp();
+  Eigen::MatrixXd C(nc, nc);
+  GreenSolveStats worst, one;
+  for (int b = 0; b < nc; ++b) {
+    Eigen::VectorXd z;
+    if (b == 0 && zx) {
+      if (zx->size() != nc * s.sites())
+        throw std::invalid_argument("green_site_block: x slip response has the wrong length");
+      z = *zx;
+    } else {
+      z = green_slip_response(s, j, &one, b);
+      worst.iterations = std::max(worst.iterations, one.iterations);
+      worst.restarts = std::max(worst.restarts, one.restarts);
+      worst.residual = std::max(worst.residual, one.residual);
+      worst.seconds += one.seconds;
+    }
+    for (int a = 0; a < nc; ++a) C(a, b) = z(s.index(j, a));
+  }
+  if (st) *st = worst;
+  return 0.5 * (C + C.transpose());
+}
+
+double green_reciprocity_sum(const Eigen::VectorXd &fJ, const Eigen::MatrixXd &CJJ)
+{
+  if (CJJ.rows() != fJ.size() || CJJ.cols() != fJ.size())
+    throw std::invalid_argument("green_reciprocity_sum: block and force sizes differ");
+  return -fJ.dot(CJJ.ldlt().solve(fJ));
 }
 
 GreenKernel green_axis_kernel(const GreenSolver &s, const Eigen::VectorXd &z, int j, int rmax)

@@ -69,14 +69,16 @@ enum class GreenPrecond { CIRCULANT, JACOBI, NONE };
 struct GreenOptions {
   GreenMethod method = GreenMethod::FFT;
   GreenPrecond precond = GreenPrecond::CIRCULANT;
-  double tol = 1e-12;       // relative residual |r| / |rhs| of the CG solve
-  int maxiter = 20000;
+  double tol = 1e-12;       // true relative residual |rhs - A f| / |rhs| of the CG solve
+  int maxiter = 20000;      // CG iterations in all (restarts included)
+  int max_restarts = 5;     // CG restarts from the true residual (see solve_cg)
   size_t dense_limit = 8000;    // largest nc N accepted by the dense path
 };
 
 struct GreenSolveStats {
-  int iterations = 0;       // CG iterations (0 for the dense path)
-  double residual = 0.0;    // final relative residual (recomputed for dense)
+  int iterations = 0;       // CG iterations, restarts included (0 for the dense path)
+  int restarts = 0;         // CG restarts from the true residual
+  double residual = 0.0;    // true relative residual |rhs - A f| / |rhs|, recomputed
   double seconds = 0.0;
 };
 
@@ -115,6 +117,9 @@ class GreenSolver {
   // dense matrix), for the benchmark.
   size_t memory_bytes() const;
   std::string describe() const;
+  // true if the solves use the circulant preconditioner (false: Jacobi or
+  // none, including the fallback when the circulant is not positive definite)
+  bool circulant_active() const;
 
  private:
   GreenParams par;
@@ -150,7 +155,22 @@ GreenRemoval green_remove_contact(const GreenSolver &s, int removed);
 // contact breaks and re-forms relaxed): z = (1/kappa + gamma1 Gh)^-1 e_jx.
 // The force on contact i changes by -k_c z_i Delta for a slip Delta, so the
 // pair coupling of pair_style eq/elastic is k_ij / k_c = -z_{ix} (i != j).
-Eigen::VectorXd green_slip_response(const GreenSolver &s, int j, GreenSolveStats *st = nullptr);
+// comp = 1 (y) or 2 (z, mismatch only) gives the response to a slip along y or z.
+Eigen::VectorXd green_slip_response(const GreenSolver &s, int j, GreenSolveStats *st = nullptr,
+                                    int comp = 0);
+
+// nc x nc block C_JJ of C = (1 + gamma1 Gh)^-1 (the paper's B for kappa = 1)
+// at site j, from the nc slip responses of j (symmetrised).  `zx` may pass
+// the x slip response if it is already known (saves one solve).
+Eigen::MatrixXd green_site_block(const GreenSolver &s, int j, const Eigen::VectorXd *zx = nullptr,
+                                 GreenSolveStats *st = nullptr);
+
+// Betti reciprocity for the removal of contact j from the intact lattice in
+// the state U0 = u0 x-hat: with C = (1 + gamma1 Gh)^-1 symmetric, f = C u and
+// the removal a constraint force t on site j (f'_J = 0: t = C_JJ^-1 f_J),
+//   df = -C_(:,J) C_JJ^-1 f_J,   sum_i df_ix = u^T df = -f_J^T C_JJ^-1 f_J,
+// f_J the nc force components of j.  Returns that sum (units k_c u0).
+double green_reciprocity_sum(const Eigen::VectorXd &fJ, const Eigen::MatrixXd &CJJ);
 
 // Kernel along the axes from a slip response at site j: kx(r) = -z_x at
 // (jx + r, jy), ky(r) = -z_x at (jx, jy + r), r = 1..rmax, in units of k_c.
