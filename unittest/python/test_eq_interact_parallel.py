@@ -95,6 +95,17 @@ def test_one_and_two_ranks_same_breaks_and_avalanches(tmp_path, case):
 
 
 @pytest.mark.parametrize("case", sorted(CASES))
+def test_newton_off_on_two_ranks(tmp_path, case):
+    """newton off on 2 ranks: the breaks and avalanches of 1 rank with
+    newton on (the style returns the ghost shares of a break's field by
+    its own reverse communication, whatever the newton setting)."""
+    run(tmp_path / "np1", "run", 1, **CASES[case])
+    run(tmp_path / "np2off", "run", 2, newton="off", **CASES[case])
+    same(final_state(tmp_path / "np1", "run"), final_state(tmp_path / "np2off", "run"))
+    assert avalanches(tmp_path / "np1", "run") == avalanches(tmp_path / "np2off", "run")
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
 @pytest.mark.parametrize("ranks", [(1, 1), (1, 2)])
 def test_restart_continues(tmp_path, case, ranks):
     nw, nr = ranks
