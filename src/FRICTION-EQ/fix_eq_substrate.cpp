@@ -42,8 +42,9 @@ enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE
 
 FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), idir(0), ilevel_respa(0), nlevels_respa(0), rev_break(0), exact(1),
-    window(0.5), drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0), dseed(0), jump_warned(0),
-    state(nullptr), neval(0), reduced_eval(-1), neval_step(-1)
+    window(0.5), drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0), dseed(0), njump(0),
+    jump_step(-1), jump_tag(0), jump_size(0.0), state(nullptr), neval(0), reduced_eval(-1),
+    chained(0)
 {
   for (double &v : global_sum) v = 0.0;
   if (narg < 5)
@@ -52,18 +53,30 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
   if (!atom->tag_enable) error->all(FLERR, "Fix eq/substrate requires atom IDs (atom_modify id yes)");
 
   kc = utils::numeric(FLERR, arg[3], false, lmp);
-  if (!(kc >= 0.0)) error->all(FLERR, "Fix eq/substrate: kc must be >= 0 (got {})", arg[3]);
+  if (!(kc >= 0.0) || !std::isfinite(kc))
+    error->all(FLERR, "Fix eq/substrate: kc must be finite and >= 0 (got {})", arg[3]);
 
   const std::vector<std::string> args(arg, arg + narg);
-  const feq::NumberParser number = EQUtil::number_parser(lmp);
+  // utils::numeric reads 1e400 as inf: every number of this command must be
+  // finite (an infinite stiffness, velocity or stage makes NaN forces)
+  const feq::NumberParser lmp_number = EQUtil::number_parser(lmp);
+  const feq::NumberParser number = [&](const std::string &tok) -> double {
+    const double v = lmp_number(tok);
+    if (!std::isfinite(v)) throw feq::SpecError("not a finite number");
+    return v;
+  };
   auto value = [&](size_t &pos, const std::string &what) -> double {
     if (pos >= args.size()) throw feq::SpecError(what + ": missing value");
     const std::string &tok = args[pos++];
+    double v;
     try {
-      return number(tok);
+      v = lmp_number(tok);
     } catch (const feq::SpecError &) {
       throw feq::SpecError(what + ": expected a number, got '" + tok + "'");
     }
+    if (!std::isfinite(v))
+      throw feq::SpecError(what + ": expected a finite number, got '" + tok + "'");
+    return v;
   };
 
   size_t iarg = 4;
@@ -122,9 +135,14 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
         try {
           disorder = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number);
         } catch (const feq::SpecError &e) {
-          // the shared parser names its role 'stiffness': name this keyword
+          // the shared parser names its role 'stiffness': name this keyword;
+          // its numbers went through the finite check above
           std::string msg = e.what();
           if (msg.rfind("stiffness", 0) == 0) msg = "disorder" + msg.substr(9);
+          const std::string nonum = ": expected a number for ";
+          const size_t at = msg.find(nonum);
+          if (at != std::string::npos)
+            msg.replace(at, nonum.size(), ": expected a finite number for ");
           throw feq::SpecError(msg);
         }
         if (iarg >= args.size()) throw feq::SpecError("disorder: missing seed after " + disorder.text);
@@ -217,8 +235,6 @@ void FixEQSubstrate::init()
     ilevel_respa = nlevels_respa - 1;
     if (respa_level >= 0) ilevel_respa = MIN(respa_level, ilevel_respa);
   }
-  jump_warned = 0;
-
   // the force window of the integrator (crossing exact): first-order
   // overdamped fix brownian* applies F(x_n) over [t_n, t_n+1]; the
   // velocity-Verlet family over [t_n+1/2, t_n+3/2]
@@ -274,10 +290,13 @@ void FixEQSubstrate::post_integrate()
   if (drive_flag) stage += vstage * update->dt;
 }
 
-// r-RESPA: once per outer step (update->dt is the outer time step)
+// r-RESPA: with the steps of the level the forces are applied at, so that
+// every force evaluation sees the stage at the time of its positions (the
+// outermost level: once per step by v dt, as without r-RESPA)
 void FixEQSubstrate::post_integrate_respa(int ilevel, int /*iloop*/)
 {
-  if (ilevel == nlevels_respa - 1) post_integrate();
+  if (ilevel == ilevel_respa && drive_flag)
+    stage += vstage * ((Respa *) update->integrate)->step[ilevel];
 }
 
 /* ----------------------------------------------------------------------
@@ -365,16 +384,14 @@ void FixEQSubstrate::apply()
   const double K = kdrive;
   const double uc = shape.period();
   const double dphi = shape.phi_in(uc) - shape.phi_in(0.0);
-  // only during dynamics, where the last evaluation was the previous step
+  // only during dynamics, where the last evaluation was that of the
+  // previous step at the r-RESPA level of this fix (or the setup)
   const bool dynamics = update->whichflag == 1 && update->setupflag == 0;
-  const bool correct = dynamics && exact && neval_step == update->ntimestep - 1;
+  const bool correct = dynamics && exact && chained;
   // a block that moves by more than half a period in one step skips parts
   // of the substrate force (time step too large)
-  const bool check_jump = dynamics && !jump_warned;
+  const bool check_jump = dynamics && chained;
   const double half = 0.5 * uc;
-  int jumped = 0;
-  tagint jump_tag = 0;
-  double jump_size = 0.0;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -396,10 +413,12 @@ void FixEQSubstrate::apply()
                  "integrator)", atom->tag[i], u);
     const double u_old = st[DISP];
     const double a_old = st[ANCHOR];
-    if (check_jump && !jumped && std::fabs(u - u_old) > half) {
-      jumped = 1;
-      jump_tag = atom->tag[i];
-      jump_size = u - u_old;
+    if (check_jump && std::fabs(u - u_old) > half) {
+      if (njump++ == 0) {
+        jump_step = update->ntimestep;
+        jump_tag = atom->tag[i];
+        jump_size = u - u_old;
+      }
     }
     const double kd = st[KC] * st[DISORDER];
     double fs;
@@ -440,14 +459,37 @@ void FixEQSubstrate::apply()
     st[FDRIVE] = fd;
   }
   ++neval;
-  neval_step = update->ntimestep;
-  if (jumped) {
-    jump_warned = 1;
-    error->warning(FLERR,
-                   "Fix eq/substrate: block {} moved by {} in one step, more than half the "
-                   "substrate period {}: the time step is too large to resolve F_s (step {})",
-                   jump_tag, jump_size, shape.period(), update->ntimestep);
+  chained = update->whichflag == 1;
+}
+
+/* ----------------------------------------------------------------------
+   the blocks that moved by more than half a period in one step, counted
+   on every rank during the run: one warning on rank 0 with their number
+   and the first of them (one reduction per run, none per step)
+------------------------------------------------------------------------- */
+
+void FixEQSubstrate::post_run()
+{
+  bigint total = 0;
+  MPI_Allreduce(&njump, &total, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (total > 0) {
+    // the first one: the earliest step, on the lowest rank
+    struct {
+      double step;
+      int rank;
+    } mine{njump ? (double) jump_step : HUGE_VAL, comm->me}, first{0.0, 0};
+    MPI_Allreduce(&mine, &first, 1, MPI_DOUBLE_INT, MPI_MINLOC, world);
+    double info[3] = {(double) jump_tag, jump_size, (double) jump_step};
+    MPI_Bcast(info, 3, MPI_DOUBLE, first.rank, world);
+    if (comm->me == 0)
+      error->warning(FLERR,
+                     "Fix eq/substrate: {} moves of a block by more than half the substrate "
+                     "period {} in one step in this run (the first: block {} by {} at step {}): "
+                     "the time step is too large to resolve F_s",
+                     total, shape.period(), (tagint) info[0], info[1], (bigint) info[2]);
   }
+  njump = 0;
+  jump_step = -1;
 }
 
 /* ----------------------------------------------------------------------
@@ -517,8 +559,9 @@ void FixEQSubstrate::reduce()
 }
 
 /* ----------------------------------------------------------------------
-   global restart: the stage (position now, velocity) so that a restarted
-   run continues the driving protocol
+   global restart: the stage (position now, velocity now, i.e. including a
+   change by fix_modify velocity) so that a restarted run continues the
+   driving protocol, and whether the writing fix had a stage at all
 ------------------------------------------------------------------------- */
 
 void FixEQSubstrate::write_restart(FILE *fp)
@@ -531,13 +574,23 @@ void FixEQSubstrate::write_restart(FILE *fp)
   }
 }
 
+// the stage position and velocity of the file replace the command's stage
+// X0 and drive v only when both the writing fix and this one have driving
+// springs; the stiffness K is always the command's
 void FixEQSubstrate::restart(char *buf)
 {
   const double *list = (const double *) buf;
+  const bool file_drive = list[2] != 0.0;
   if (!drive_flag) {
-    if (list[2] != 0.0 && comm->me == 0)
+    if (file_drive && comm->me == 0)
       error->warning(FLERR, "Fix eq/substrate: the restart file has driving springs, this fix "
                             "has none (no drive keyword): the stage is not restored");
+    return;
+  }
+  if (!file_drive) {
+    if (comm->me == 0)
+      utils::logmesg(lmp, "fix eq/substrate: the restart file has no driving springs: the stage "
+                          "starts at X0 = {} with v = {} of this command\n", stage, vstage);
     return;
   }
   stage = list[0];
@@ -561,7 +614,8 @@ int FixEQSubstrate::modify_param(int narg, char **arg)
     const int jgroup = group->find(arg[1]);
     if (jgroup < 0) error->all(FLERR, "Fix_modify {} kc: group {} does not exist", id, arg[1]);
     const double value = utils::numeric(FLERR, arg[2], false, lmp);
-    if (!(value >= 0.0)) error->all(FLERR, "Fix_modify {} kc: value must be >= 0 (got {})", id, arg[2]);
+    if (!(value >= 0.0) || !std::isfinite(value))
+      error->all(FLERR, "Fix_modify {} kc: value must be finite and >= 0 (got {})", id, arg[2]);
     const int jbit = group->bitmask[jgroup];
     const int *mask = atom->mask;
     for (int i = 0; i < atom->nlocal; i++)
@@ -569,6 +623,7 @@ int FixEQSubstrate::modify_param(int narg, char **arg)
         if (state[i][DISORDER] == 0.0) init_block(i);
         state[i][KC] = value;
       }
+    reduced_eval = -1;    // the energies change with k_c
     return 3;
   }
   if (strcmp(arg[0], "velocity") == 0) {
@@ -577,7 +632,10 @@ int FixEQSubstrate::modify_param(int narg, char **arg)
                  id, id);
     if (!drive_flag)
       error->all(FLERR, "Fix_modify {} velocity: fix {} has no stage (add the drive keyword)", id, id);
-    vstage = utils::numeric(FLERR, arg[1], false, lmp);
+    const double value = utils::numeric(FLERR, arg[1], false, lmp);
+    if (!std::isfinite(value))
+      error->all(FLERR, "Fix_modify {} velocity: v must be finite (got {})", id, arg[1]);
+    vstage = value;
     return 2;
   }
   return 0;

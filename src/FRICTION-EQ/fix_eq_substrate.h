@@ -40,6 +40,7 @@ class FixEQSubstrate : public Fix {
   void post_force(int) override;
   void post_force_respa(int, int, int) override;
   void min_post_force(int) override;
+  void post_run() override;
   double compute_scalar() override;
   double compute_vector(int) override;
   int modify_param(int, char **) override;
@@ -91,7 +92,12 @@ class FixEQSubstrate : public Fix {
   // quenched disorder of the blocks' k_c (threshold force) factors d_n
   feq::DistributionSpec disorder;
   bigint dseed;
-  int jump_warned;    // a block moved more than half a period in one step
+  // moves of a block by more than half a period in one step (time step too
+  // large), counted on each rank and reported once per run (post_run); the
+  // first one of this rank
+  bigint njump, jump_step;
+  tagint jump_tag;
+  double jump_size;
 
   double **state;
 
@@ -99,7 +105,10 @@ class FixEQSubstrate : public Fix {
   enum { S_VEL, S_DISP, S_FSUB, S_FDRIVE, S_ESUB, S_EDRIVE, S_COUNT, NSUM };
   double global_sum[NSUM];
   bigint neval, reduced_eval;    // force evaluations; the one the sums are of
-  bigint neval_step;             // time step of the last force evaluation
+  // the last force evaluation was one of dynamics (a setup or a step, at
+  // any r-RESPA level): the displacements it stored are those of the
+  // previous (inner) step, so crossings of this one can be located
+  int chained;
   void reduce();
 
   void init_block(int i);

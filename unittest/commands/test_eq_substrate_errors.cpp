@@ -1,9 +1,11 @@
 // Bad input to fix eq/substrate, its fix_modify keywords, the eq/me
 // substrate table and pair eq/elastic with blocks gives a LAMMPS error that
-// names the command, the keyword and the allowed values.
+// names the command, the keyword and the allowed values.  Also: what a
+// restart file restores of the stage.
 #include "lammps.h"
 
 #include "atom.h"
+#include "fix.h"
 #include "group.h"
 #include "input.h"
 #include "modify.h"
@@ -67,7 +69,8 @@ TEST_F(EQSubstrateErrors, Arguments)
                "<shape> <values> \\[keyword values ...\\]' with shape one of: sawtooth, smooth, "
                "table.*",
                fix("1.0"););
-  TEST_FAILURE(".*ERROR: Fix eq/substrate: kc must be >= 0 \\(got -1\\).*", fix("-1 sawtooth 1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate: kc must be finite and >= 0 \\(got -1\\).*",
+               fix("-1 sawtooth 1.0"););
   TEST_FAILURE(".*ERROR: Expected floating point parameter instead of 'abc'.*",
                fix("abc sawtooth 1.0"););
   TEST_FAILURE(".*ERROR: Fix eq/substrate unknown shape 'sine'; allowed: sawtooth, smooth, table.*",
@@ -115,6 +118,35 @@ TEST_F(EQSubstrateErrors, Arguments)
                command("fix s moving eq/substrate 1.0 sawtooth 1.0"););
 }
 
+// utils::numeric reads 1e400 as inf: every number must be finite
+TEST_F(EQSubstrateErrors, NonFiniteNumbers)
+{
+  TEST_FAILURE(".*ERROR: Fix eq/substrate: kc must be finite and >= 0 \\(got 1e400\\).*",
+               fix("1e400 sawtooth 1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate sawtooth uc: expected a finite number, got '1e400'.*",
+               fix("1.0 sawtooth 1e400"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate drive K: expected a finite number, got '1e400'.*",
+               fix("1.0 sawtooth 1.0 drive 1e400 1e-4"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate drive v: expected a finite number, got '-1e400'.*",
+               fix("1.0 sawtooth 1.0 drive 0.07 -1e400"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate stage X0: expected a finite number, got '1e400'.*",
+               fix("1.0 sawtooth 1.0 drive 0.07 1e-4 stage 1e400"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate disorder uniform: expected a finite number for hi, got "
+               "'1e400'.*",
+               fix("1.0 sawtooth 1.0 disorder uniform 0.9 1e400 5"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate disorder gaussian: expected a finite number for sd, got "
+               "'1e400'.*",
+               fix("1.0 sawtooth 1.0 disorder gaussian 1.0 1e400 5"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate disorder gaussian: expected a finite number for mean, "
+               "got '1e400'.*",
+               fix("1.0 sawtooth 1.0 disorder gaussian 1e400 0.1 5"););
+  HIDE_OUTPUT([&] { fix("1.0 sawtooth 1.0 drive 0.07 1e-4"); });
+  TEST_FAILURE(".*ERROR: Fix_modify s kc: value must be finite and >= 0 \\(got 1e400\\).*",
+               command("fix_modify s kc left 1e400"););
+  TEST_FAILURE(".*ERROR: Fix_modify s velocity: v must be finite \\(got -1e400\\).*",
+               command("fix_modify s velocity -1e400"););
+}
+
 TEST_F(EQSubstrateErrors, Tables)
 {
   TEST_FAILURE(".*ERROR: Fix eq/substrate table: cannot open table file 'no_such.table'.*",
@@ -147,13 +179,64 @@ TEST_F(EQSubstrateErrors, FixModify)
   HIDE_OUTPUT([&] { fix("1.0 sawtooth 1.0"); });
   TEST_FAILURE(".*ERROR: Fix_modify s kc: group nogroup does not exist.*",
                command("fix_modify s kc nogroup 0.5"););
-  TEST_FAILURE(".*ERROR: Fix_modify s kc: value must be >= 0 \\(got -0.5\\).*",
+  TEST_FAILURE(".*ERROR: Fix_modify s kc: value must be finite and >= 0 \\(got -0.5\\).*",
                command("fix_modify s kc left -0.5"););
   TEST_FAILURE(".*ERROR: Illegal fix_modify s kc command: expected 'fix_modify s kc GROUP value'.*",
                command("fix_modify s kc left"););
   TEST_FAILURE(".*ERROR: Fix_modify s velocity: fix s has no stage \\(add the drive keyword\\).*",
                command("fix_modify s velocity 1e-4"););
   TEST_FAILURE(".*ERROR: Illegal fix_modify command.*", command("fix_modify s speed 1e-4"););
+}
+
+// A restart file restores the stage position and velocity (the velocity of
+// the writing run, also one set by fix_modify velocity) in place of the
+// command's stage X0 and drive v, but only when the writing fix had driving
+// springs: a file without them leaves the command's stage.
+TEST_F(EQSubstrateErrors, RestartStage)
+{
+  auto stage = [&](int n) {
+    return lmp->modify->fix[lmp->modify->find_fix("s")]->compute_vector(n);    // 1: X_s, 2: v
+  };
+  HIDE_OUTPUT([&] {
+    fix("1.0 sawtooth 1.0");
+    command("run 0 post no");
+    command("write_restart eq_sub_nodrive.restart");
+    command("clear");
+    command("read_restart eq_sub_nodrive.restart");
+    fix("1.0 sawtooth 1.0 drive 0.07 1e-4 stage 12.0");
+  });
+  EXPECT_EQ(stage(1), 12.0);
+  EXPECT_EQ(stage(2), 1e-4);
+  // the stage moves at the velocity set by fix_modify (no integrator: the
+  // blocks stay): X_s = 12 - 10 * 0.5 * 2e-4
+  HIDE_OUTPUT([&] {
+    command("fix_modify s velocity -2e-4");
+    command("timestep 0.5");
+    command("run 10 post no");
+    command("write_restart eq_sub_drive.restart");
+    command("clear");
+    command("read_restart eq_sub_drive.restart");
+    fix("1.0 sawtooth 1.0 drive 0.07 1e-4 stage 3.0");
+  });
+  EXPECT_NEAR(stage(1), 12.0 - 10 * 0.5 * 2e-4, 1e-12);
+  EXPECT_EQ(stage(2), -2e-4);
+  // fix_modify velocity after read_restart replaces the restored one
+  HIDE_OUTPUT([&] { command("fix_modify s velocity 5e-4"); });
+  EXPECT_EQ(stage(2), 5e-4);
+  // a fix without drive ignores the stage of the file (with a warning)
+  HIDE_OUTPUT([&] {
+    command("clear");
+    command("read_restart eq_sub_drive.restart");
+  });
+  BEGIN_CAPTURE_OUTPUT();
+  fix("1.0 sawtooth 1.0");
+  const auto out = END_CAPTURE_OUTPUT();
+  EXPECT_THAT(out, testing::HasSubstr("WARNING: Fix eq/substrate: the restart file has driving "
+                                      "springs, this fix has none"));
+  EXPECT_EQ(stage(1), 0.0);
+  EXPECT_EQ(stage(2), 0.0);
+  std::remove("eq_sub_nodrive.restart");
+  std::remove("eq_sub_drive.restart");
 }
 
 TEST_F(EQSubstrateErrors, PairWithBlocks)

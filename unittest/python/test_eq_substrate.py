@@ -11,11 +11,17 @@ independent references.
   paper, Eq. crack.eqi04; pinning at the exact discrete depinning force;
   nucleation at the static threshold of the weak blocks;
 * the substrate force of every shape (and an eq-me table) at prescribed
-  displacements; quenched disorder statistics;
-* 1 vs 2 MPI ranks and restart continuity, bonds vs pair eq/elastic.
+  displacements; the substrate energy before and after fix_modify kc;
+  quenched disorder statistics;
+* r-RESPA with the fix at the inner level against velocity Verlet at the
+  inner time step;
+* 1 vs 2 MPI ranks and restart continuity (fix_modify kc and velocity,
+  restart onto 2 ranks, migration of slipped blocks), bonds vs pair
+  eq/elastic; the time-step warning of blocks on any rank.
 """
 import math
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -27,6 +33,7 @@ INPUTS = Path(__file__).resolve().parent / "inputs"
 CHAIN = INPUTS / "in.substrate-chain"
 BLOCK = INPUTS / "in.substrate-block"
 POINTS = INPUTS / "in.substrate-points"
+JUMP = INPUTS / "in.substrate-jump"
 
 KC, UC, K, ETA = 1.0, 1.0, 0.07, 100.0
 
@@ -116,6 +123,26 @@ def test_single_block_converges_at_first_order(tmp_path, integ):
     assert rich < 0.2 * err["exact", 0.0125], (rich, err)
     rich_step = np.abs(2 * res["step", 0.0125] - res["step", 0.025] - u).max()
     assert rich_step > 2 * rich, (rich_step, rich)
+
+
+def test_respa_inner_level_is_verlet_at_the_inner_step(tmp_path):
+    """r-RESPA with 2 levels and the substrate force and drag at the inner
+    level (fix_modify respa 1), no other forces: the outer level applies
+    nothing, so the run is velocity Verlet with the inner step dt/2.  The
+    crossing correction and the stage must then act at every inner step:
+    the stick-slip of the block (several slips) is that of fix nve +
+    viscous at dt/2 (itself tested against the exact solution above)."""
+    dt, T = 0.05, 60.0
+    res = {}
+    for respa, step in ((2, dt), (0, dt / 2)):
+        out = tmp_path / f"respa_{respa}.dat"
+        run_lammps(BLOCK, {"integ": "nve", "dt": step, "respa": respa, "T": T,
+                           "every": round(0.25 / step), "out": out.name}, cwd=tmp_path)
+        res[respa] = np.loadtxt(out)
+    a, b = res[2], res[0]
+    assert a.shape == b.shape and np.allclose(a[:, 0], b[:, 0])
+    assert b[-1, 1] > 3.0    # several slips
+    assert np.abs(a[:, 1] - b[:, 1]).max() < 1e-10, np.abs(a[:, 1] - b[:, 1]).max()
 
 
 # ------------------------------------------------------- static chain
@@ -292,6 +319,28 @@ def test_master_equation_table_is_the_block_force(tmp_path):
     assert (u > 1.25).sum() > 10    # second period used
 
 
+def test_energy_is_the_potential_of_the_current_k_c(tmp_path):
+    """The substrate energy (vector entry 8) is the potential of the
+    current landscape at the current displacements,
+    sum_n k_c,n V(u_n) with V(u) = floor(u/u_c) W + (u mod u_c)^2/2 for the
+    sawtooth (W = u_c^2/2).  fix_modify kc changes the landscape, so the
+    energy changes at once (before the next run) by sum dk_c V(u), as for
+    any change of a potential parameter."""
+    uc, kc, kweak, n = 0.8, 1.5, 0.5, 40
+    run_lammps(POINTS, {"shapeargs": f"sawtooth {uc}", "kc": kc, "n": n, "kweak": kweak},
+               cwd=tmp_path)
+    d = read_dump_last(tmp_path / "points.dump")
+    u = d["f_sub[1]"]
+    assert u.min() < -0.5 and u.max() > 2 * uc    # both signs, several wells
+    V = np.floor(u / uc) * uc ** 2 / 2 + np.mod(u, uc) ** 2 / 2
+    k = np.full(n, kc)
+    k[d["id"] <= n // 2] = kweak
+    e = np.loadtxt(tmp_path / "energy.dat")
+    assert e[0] == pytest.approx(kc * V.sum(), rel=1e-12, abs=1e-12)
+    assert e[1] == pytest.approx((k * V).sum(), rel=1e-12, abs=1e-12)
+    assert e[2] == e[1]
+
+
 def test_disorder_statistics_and_decomposition(tmp_path):
     """disorder gaussian 1 0.05: the quenched factors d_n have the drawn
     mean and spread (tolerances 4 standard errors for N = 4000), and the
@@ -311,21 +360,51 @@ def test_disorder_statistics_and_decomposition(tmp_path):
 
 # ------------------------------------------------------- decomposition, restart
 def test_two_ranks_and_restart_reproduce_the_run(tmp_path):
-    """Two kinks running on a 200-block chain: 2 MPI ranks give the same
-    trajectory to rounding (sums over neighbors in another order), and a
-    run split by write_restart / read_restart continues it bit for bit."""
-    common = dict(N=200, g=25.0, f0=0.9, v=-2e-4, seed0=90, seed1=110, dt=0.1, every=1000)
-    chain(tmp_path, steps=2000, dumpfile="one.dump", **common)
-    chain(tmp_path, nprocs=2, steps=2000, dumpfile="two.dump", **common)
-    a, b = read_dump_last(tmp_path / "one.dump"), read_dump_last(tmp_path / "two.dump")
-    assert a["f_sub[6]"].max() > 0    # blocks slipped
+    """The paper's protocol with the state that fix_modify sets: two weak
+    blocks (fix_modify kc) nucleate kinks while the stage ramps; after
+    2000 steps fix_modify velocity reverses the stage.  reverse break, so
+    that the well origins are state.  Checked against the same run on 1
+    rank without interruption:
+
+    * 2 MPI ranks give the same trajectory to rounding (sums over
+      neighbors in another order) and the same slips, with the subdomain
+      boundary at x = 99.5 between the weak blocks and neighbor lists (and
+      migration) every step: a block migrates mid-run after it slipped;
+    * write_restart after 3000 steps and read_restart, with the fix
+      command naming the original v and no fix_modify kc, continues the
+      run bit for bit on 1 rank and to rounding on 2 ranks: the blocks'
+      k_c and the stage velocity set by fix_modify come from the file."""
+    N, weak, kweak = 200, 100, 0.5
+    common = dict(N=N, xlo=-0.5, g=25.0, f0=0.99, v=1e-4, weak=weak, kweak=kweak, rev="break",
+                  dt=0.1, every=50, ncheck="no")
+    protocol = dict(steps=2000, steps2=1000, v2=-2e-4)
+    chain(tmp_path, steps3=1000, dumpfile="one.dump", **common, **protocol)
+    chain(tmp_path, nprocs=2, steps3=1000, dumpfile="two.dump", **common, **protocol)
+    steps, one = fkme.read_dump(tmp_path / "one.dump")
+    _, two = fkme.read_dump(tmp_path / "two.dump")
+    a = {k: v[-1] for k, v in one.items() if k != "box"}
+    b = {k: v[-1] for k, v in two.items() if k != "box"}
+    assert a["f_sub[6]"].sum() > 40                      # the kinks ran
     assert np.abs(a["x"] - b["x"]).max() < 1e-10
     assert np.array_equal(a["f_sub[6]"], b["f_sub[6]"])
-    chain(tmp_path, steps=1000, dumpfile="first.dump", restartfile="half_restart", **common)
-    chain(tmp_path, steps=1000, dumpfile="second.dump", readrestart="half_restart", **common)
+    # a block that had slipped (well origin > 0) changed rank during a run
+    proc, anchor = two["proc"], two["f_sub[6]"]
+    moved = [(steps[k + 1], i + 1) for k in range(len(steps) - 1)
+             for i in np.nonzero((proc[k] != proc[k + 1]) & (anchor[k] > 0))[0]]
+    assert moved, "no slipped block migrated mid-run"
+    # restart after the velocity change; the second part names v, not v2
+    chain(tmp_path, dumpfile="first.dump", restartfile="half_restart", **common, **protocol)
+    rest = dict(common, steps=1000)
+    chain(tmp_path, dumpfile="second.dump", readrestart="half_restart", **rest)
+    chain(tmp_path, nprocs=2, dumpfile="second2.dump", readrestart="half_restart", **rest)
     c = read_dump_last(tmp_path / "second.dump")
+    c2 = read_dump_last(tmp_path / "second2.dump")
+    k = np.where((c["id"] == weak) | (c["id"] == weak + 1), kweak, 1.0)
+    assert np.array_equal(c["f_sub[4]"], k) and np.array_equal(c2["f_sub[4]"], k)
     assert np.array_equal(a["x"], c["x"])
     assert np.array_equal(a["vx"], c["vx"])
+    assert np.abs(a["x"] - c2["x"]).max() < 1e-10
+    assert np.array_equal(a["f_sub[6]"], c2["f_sub[6]"])
 
 
 def test_bonds_and_pair_couple_the_chain_alike(tmp_path):
@@ -386,3 +465,26 @@ def test_pair_pairs_follow_a_resort_between_runs(tmp_path):
     ref = g * lap[iy, ix]
     assert np.abs(d["fx"] - ref).max() < 1e-12, np.abs(d["fx"] - ref).max()
     assert np.array_equal(res[1]["fx"], res[0]["fx"])
+
+
+def test_time_step_warning_from_any_rank(tmp_path):
+    """Blocks that move by more than half a period in one step are counted
+    on the rank that owns them and reported once, by rank 0, in the log:
+    on 2 ranks the moving blocks (IDs > n/2) all live on the second rank.
+    20 blocks move by 0.6 in each of 3 steps: 60 such moves; at 0.4 per
+    step none."""
+    n, steps = 40, 3
+    for nprocs in (1, 2):
+        log = tmp_path / f"log.jump{nprocs}"
+        run_lammps(JUMP, {"n": n, "steps": steps}, nprocs=nprocs, cwd=tmp_path, log=log.name)
+        warn = [l for l in log.read_text().splitlines() if "WARNING: Fix eq/substrate" in l]
+        assert len(warn) == 1, warn
+        m = re.search(r"(\d+) moves of a block by more than half the substrate period 1 in one "
+                      r"step in this run \(the first: block (\d+) by ([-0-9.e]+) at step 1\)",
+                      warn[0])
+        assert m, warn[0]
+        assert int(m.group(1)) == n // 2 * steps
+        assert int(m.group(2)) > n // 2 and float(m.group(3)) == pytest.approx(0.6)
+    log = tmp_path / "log.slow"
+    run_lammps(JUMP, {"n": n, "steps": steps, "vel": 4.0}, nprocs=2, cwd=tmp_path, log=log.name)
+    assert "WARNING: Fix eq/substrate" not in log.read_text()
