@@ -119,3 +119,21 @@ def test_creep_of_a_pinned_kink_pair(tmp_path):
     for r in runs:
         ratio = r["rate"] / (A * math.exp(-sad["dE"] / r["T"]))
         assert 0.33 < ratio < 1.3, (r["T"], ratio)
+
+
+def test_random_state_nucleates_several_fronts(tmp_path):
+    """The example's random initial state (L = 128, f = 0.75, a random 25 %
+    of the blocks one period ahead): isolated pre-slipped blocks fall back,
+    clusters above the critical size grow as closed fronts, several of
+    them (5 in the example), and their fronts slip the whole interface
+    (at t = 1375 in the example).  f = 0.75 is below f_max = k_c + K, so
+    the unslipped interface is stable: the fronts do the slipping.  The
+    slipped fraction first falls (blocks falling back) and then grows."""
+    assert 0.75 < fkme.f_max(KC, UC, K)
+    r = run.run_fronts(tmp_path, tmax=1600.0)
+    assert r["nuclei"] >= 2, r["nuclei"]
+    assert r["t_full"] < 1600.0
+    frac = r["frac"]
+    k0 = r["k0"]
+    assert frac[k0] < 0.25                      # the isolated blocks fell back
+    assert np.all(np.diff(frac[k0:]) >= 0)      # then the fronts only advance
