@@ -3,8 +3,9 @@
 
 Prints, for the FFT path (open array, zero-padded FFTs, preconditioned CG)
 on L x L lattices, the time and CG iterations of one solve of the stressed
-state (F = B K U0), the total for the four solves of a removal experiment
-(state, without the contact, Eq. int.eq09, slip kernel), the memory held by
+state (F = B K U0), the total for the five solves of a removal experiment
+(state, without the contact, Eq. int.eq09, slip kernels along x and y for
+the kernel and the reciprocity check), the memory held by
 the operator and the peak resident memory of the process; the iterations
 without preconditioner; and the dense Cholesky path where it fits, with
 its memory and a cubic extrapolation to L = 89.
@@ -37,7 +38,7 @@ def main(argv=None):
     with tempfile.TemporaryDirectory() as d:
         print(f"eq-green benchmark, gamma1 = {g}, gamma2 = 0.3, sigma = 0.3, open array, "
               f"tol 1e-12 (relative residual)")
-        print("  L      N        unknowns  precond    iters  t_state[s]  t_removal(4 solves)[s]"
+        print("  L      N        unknowns  precond    iters  t_state[s]  t_removal(5 solves)[s]"
               "  operator[MB]  peak RSS[MB]")
         for L in a.sizes:
             for pc in ["circulant"] + (["none"] if L in a.noprecond else []):
