@@ -30,8 +30,7 @@ def run_eq(kappa, out, seed=4711, xmax=2.0, dxmax=0.005, nprocs=1, crossing="exa
     d.mkdir(parents=True, exist_ok=True)
     eqtools.run_lammps(HERE / "in.eq-interact",
                        {"kappa": kappa, "seed": seed, "Xmax": xmax, "dX": dxmax, "out": d,
-                        "contacts": "threshold uniform 0.75 1.25 reform delta 0.0 crossing "
-                                    + crossing},
+                        "crossing": crossing},
                        nprocs=nprocs, cwd=d)
     F = eqtools.load(d / "F.dat")
     av = np.atleast_2d(np.loadtxt(d / "avalanches.dat"))

@@ -34,8 +34,7 @@ def run_eq(kappa, out, seed, xmax, xhist, nx=60, ny=34, nprocs=1, lam=3.0, rmode
     eqtools.run_lammps(HERE / "in.eq-interact",
                        {"kappa": kappa, "seed": seed, "Xmax": xmax, "Xhist": xhist,
                         "nx": nx, "ny": ny, "lam": lam, "rmode": rmode, "out": d,
-                        "contacts": "threshold uniform 0.75 1.25 reform delta 0.0 crossing "
-                                    + crossing},
+                        "crossing": crossing},
                        nprocs=nprocs, cwd=d)
     c, n, tot = eqtools.read_histo(d / "Qs.dat")
     w = c[1] - c[0]

@@ -35,9 +35,7 @@ def steady_hist(tmp, kappa, seed=4711, xmax=5.0, xhist=2.0, lam=3.0, crossing="e
     d = tmp / ("k%g_l%g_%s" % (kappa, lam, crossing))
     d.mkdir(parents=True, exist_ok=True)
     eqtools.run_lammps(INPUT, {"kappa": kappa, "seed": seed, "Xmax": xmax, "Xhist": xhist,
-                               "lam": lam, "out": d,
-                               "contacts": "threshold uniform 0.75 1.25 reform delta 0.0 "
-                                           "crossing " + crossing}, cwd=d)
+                               "lam": lam, "crossing": crossing, "out": d}, cwd=d)
     c, n, tot = eqtools.read_histo(d / "Qs.dat")
     return c, n / tot / (c[1] - c[0])
 

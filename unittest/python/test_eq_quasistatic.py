@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 import eqtools
+from eqtools import fkme
 
 ROOT = Path(__file__).resolve().parents[2]
 INPUT = ROOT / "unittest" / "python" / "inputs" / "in.quasistatic"
@@ -76,14 +77,6 @@ def test_fixed_steps_converge_with_reform_as_stretch(tmp_path):
     assert errs[0] > errs[1] > errs[2], errs
 
 
-def _dump_frames(path):
-    frames = []
-    for part in Path(path).read_text().split("ITEM: TIMESTEP")[1:]:
-        rows = part.split("ITEM: ATOMS")[1].strip().splitlines()[1:]
-        frames.append(np.array([[float(v) for v in l.split()] for l in rows]))
-    return frames
-
-
 def test_induced_break_carry_and_reset(tmp_path):
     """The rule for a contact pushed past its threshold by a partner's
     break, against the model worked out by hand for two contacts (k = 1,
@@ -99,9 +92,10 @@ def test_induced_break_carry_and_reset(tmp_path):
         d.mkdir()
         eqtools.run_lammps(INPUT.parent / "in.two-contacts", {"crossing": crossing, "out": d},
                            cwd=d)
-        f0, f1 = _dump_frames(d / "d.dump")     # id s x_s k s nbreak h
-        th1, th2 = f0[:, 2]
-        assert np.allclose(f0[:, 1], [0.3, 0.2], atol=1e-12)
+        _, dump = fkme.read_dump(d / "d.dump")   # sorted by id, one row per frame
+        s, th, fc, nb, h = (dump[k] for k in ("f_c[1]", "f_c[2]", "f_c[3]", "f_c[4]", "f_c[7]"))
+        th1, th2 = th[0]
+        assert np.allclose(s[0], [0.3, 0.2], atol=1e-12)
         adv = th1 - 0.3 - c * 0.1                # advance to contact 1's threshold
         s1, s2 = 0.3 + adv, 0.2 + adv
         s1n = c * s2 / (1 + c)
@@ -109,11 +103,11 @@ def test_induced_break_carry_and_reset(tmp_path):
         assert e2 - th2 > 0.1                    # contact 2 is pushed well past
         carry = e2 - th2 if crossing == "exact" else 0.0
         s2n = (carry + c * s1n) / (1 + c)
-        assert np.array_equal(f1[:, 4], [1, 1])  # each broke once
-        assert np.allclose(f1[:, 1], [s1n, s2n], rtol=0, atol=1e-12), (crossing, f1[:, 1])
+        assert np.array_equal(nb[1], [1, 1])     # each broke once
+        assert np.allclose(s[1], [s1n, s2n], rtol=0, atol=1e-12), (crossing, s[1])
         h1 = c * (s1n - s2n)
-        assert np.allclose(f1[:, 5], [h1, -h1], rtol=0, atol=1e-12)
+        assert np.allclose(h[1], [h1, -h1], rtol=0, atol=1e-12)
         # contact 2's force after the break: the carried overshoot, or 0
-        assert abs(f1[1, 3] + f1[1, 5] - carry) < 1e-12
+        assert abs(fc[1, 1] + h[1, 1] - carry) < 1e-12
         av = np.loadtxt(d / "av.dat")
         assert list(av) == [1, 2, 1, 2]          # step, size, trigger, rounds
