@@ -24,12 +24,12 @@
 #include "memory.h"
 #include "modify.h"
 #include "neigh_list.h"
-#include "neigh_request.h"
 #include "neighbor.h"
 #include "update.h"
 #include "utils.h"
 
 #include "eq_distribution.h"
+#include "eq_lammps_compat.h"
 #include "eq_lammps_util.h"
 
 #include <cmath>
@@ -131,7 +131,7 @@ void PairEQElastic::settings(int narg, char **arg)
 {
   if (narg != 1)
     error->all(FLERR, "Illegal pair_style eq/elastic command: expected 'pair_style eq/elastic rcut'");
-  cut_global = utils::numeric(FLERR, arg[0], false, lmp);
+  cut_global = EQUtil::numeric(lmp, "Pair style eq/elastic: rcut", arg[0]);
   if (!(cut_global > 0.0) || !std::isfinite(cut_global))
     error->all(FLERR, "Pair style eq/elastic: rcut must be a finite number > 0 (got {})", arg[0]);
 
@@ -186,7 +186,11 @@ void PairEQElastic::coeff(int narg, char **arg)
       next = 4;
     }
     if (narg > next) {
-      cut_one = utils::numeric(FLERR, arg[next], false, lmp);
+      try {
+        cut_one = EQUtil::number_parser(lmp)(arg[next]);
+      } catch (const feq::SpecError &) {
+        throw feq::SpecError(std::string("rcut '") + arg[next] + "' is not a number");
+      }
       if (!(cut_one > 0.0) || !std::isfinite(cut_one))
         throw feq::SpecError(std::string("rcut must be a finite number > 0 (got ") + arg[next] + ")");
     }
@@ -257,9 +261,7 @@ void PairEQElastic::init_style()
   for (const auto &k : kernels)
     if (k.anisotropic()) anisotropic = 1;
 
-  int irequest = neighbor->request(this, instance_me);
-  neighbor->requests[irequest]->half = 0;
-  neighbor->requests[irequest]->full = 1;
+  EQCompat::request_full_list(neighbor, this, instance_me);
   fresh = 0;
 }
 
@@ -352,7 +354,7 @@ void PairEQElastic::load_stretches()
       sx[i] = (mask[i] & groupbit) ? sub->displacement(i) : NOT_A_CONTACT;
   }
   comm_mode = COMM_STRETCH;
-  comm->forward_comm_pair(this);
+  EQCompat::forward_comm(comm, this);
   ghosts_current = 1;
 }
 
@@ -539,7 +541,7 @@ void PairEQElastic::scatter(const int *clist, int n, const double *ds)
       dh[j] -= factor * kval(itype, jtype, rsq, del) * d;
     }
   }
-  comm->reverse_comm_pair(this);
+  EQCompat::reverse_comm(comm, this);
   for (int i = 0; i < nlocal; i++)
     if (!std::isnan(sx[i])) st[i][hcol] += dh[i];
   ghosts_current = 0;

@@ -1,0 +1,48 @@
+# FRICTION-EQ: what every CMake route of the package shares (the wrapper
+# build in the repository root, the plugin build in plugin/).
+#
+#   feq_lammps_version(<LAMMPS src dir> <out number> <out text>)
+#       "29 Sep 2021" -> 20210929 (FEQ_LAMMPS_VERSION, see eq_lammps_compat.h)
+#   feq_add_core()
+#       feq_core: the LAMMPS-free physics kernels the styles use
+#       (distributions, random draws, master equation, kernels, substrate),
+#       no external dependency; position-independent (liblammps, plugins)
+#   FEQ_STYLE_SOURCES
+#       the LAMMPS styles of the package (src/FRICTION-EQ/*.cpp)
+#
+# The surface Green tensor solver (lib/eq_green.*, FFTW3 + Eigen3) is not
+# part of feq_core: only the eq-green tool and its tests link it.
+
+set(FEQ_PKG_DIR "${CMAKE_CURRENT_LIST_DIR}")
+file(GLOB FEQ_STYLE_SOURCES CONFIGURE_DEPENDS "${FEQ_PKG_DIR}/*.cpp")
+set(FEQ_GREEN_SOURCES "${FEQ_PKG_DIR}/lib/eq_green.cpp")
+
+function(feq_lammps_version lammps_src out_number out_text)
+  file(STRINGS "${lammps_src}/version.h" _line REGEX "^#define LAMMPS_VERSION ")
+  if(NOT _line MATCHES "\"([0-9]+) ([A-Z][a-z][a-z]) ([0-9][0-9][0-9][0-9])\"")
+    message(FATAL_ERROR "FRICTION-EQ: cannot read the LAMMPS version from "
+      "${lammps_src}/version.h (got '${_line}')")
+  endif()
+  set(_day ${CMAKE_MATCH_1})
+  set(_year ${CMAKE_MATCH_3})
+  set(_months Jan Feb Mar Apr May Jun Jul Aug Sep Oct Nov Dec)
+  list(FIND _months ${CMAKE_MATCH_2} _m)
+  if(_m LESS 0)
+    message(FATAL_ERROR "FRICTION-EQ: unknown month '${CMAKE_MATCH_2}' in ${lammps_src}/version.h")
+  endif()
+  math(EXPR _number "${_year} * 10000 + (${_m} + 1) * 100 + ${_day}")
+  set(${out_number} ${_number} PARENT_SCOPE)
+  set(${out_text} "${_day} ${CMAKE_MATCH_2} ${_year}" PARENT_SCOPE)
+endfunction()
+
+function(feq_add_core)
+  file(GLOB _lib CONFIGURE_DEPENDS "${FEQ_PKG_DIR}/lib/*.cpp")
+  list(REMOVE_ITEM _lib ${FEQ_GREEN_SOURCES})
+  add_library(feq_core STATIC ${_lib})
+  target_include_directories(feq_core PUBLIC "${FEQ_PKG_DIR}/lib")
+  target_compile_features(feq_core PUBLIC cxx_std_11)
+  set_target_properties(feq_core PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(feq_core PRIVATE -Wall -Wextra)
+  endif()
+endfunction()
