@@ -4,21 +4,49 @@
 
 #include "eq_lammps_util.h"
 
+#include "error.h"
 #include "lammps.h"
 #include "pointers.h"
 #include "utils.h"
 
+#include <cerrno>
+#include <cstdlib>
 #include <mpi.h>
 #include <string>
 
 using namespace LAMMPS_NS;
 
-feq::NumberParser EQUtil::number_parser(LAMMPS *lmp)
+namespace {
+double read_double(const std::string &tok)
 {
-  return [lmp](const std::string &tok) -> double {
-    if (!utils::is_double(tok)) throw feq::SpecError("not a number");
-    return utils::numeric(FLERR, tok.c_str(), false, lmp);
-  };
+  if (!utils::is_double(tok)) throw feq::SpecError("not a number");
+  return std::strtod(tok.c_str(), nullptr);    // +-inf beyond the range
+}
+}    // namespace
+
+feq::NumberParser EQUtil::number_parser(LAMMPS * /*lmp*/)
+{
+  return read_double;
+}
+
+double EQUtil::numeric(LAMMPS *lmp, const std::string &what, const std::string &tok)
+{
+  try {
+    return read_double(tok);
+  } catch (const feq::SpecError &) {
+    lmp->error->all(FLERR, "{}: expected a number, got '{}'", what, tok);
+  }
+  return 0.0;
+}
+
+bigint EQUtil::bnumeric(LAMMPS *lmp, const std::string &what, const std::string &tok)
+{
+  if (!utils::is_integer(tok)) lmp->error->all(FLERR, "{}: expected an integer, got '{}'", what, tok);
+  errno = 0;
+  const long long v = std::strtoll(tok.c_str(), nullptr, 10);
+  if (errno == ERANGE || v > (long long) MAXBIGINT || v < -(long long) MAXBIGINT)
+    lmp->error->all(FLERR, "{}: integer {} is out of range", what, tok);
+  return (bigint) v;
 }
 
 namespace {

@@ -9,13 +9,27 @@
 
 #include "eq_distribution.h"
 
+#include "lmptype.h"
+
+#include <string>
+
 namespace LAMMPS_NS {
 class LAMMPS;
 
 namespace EQUtil {
-  // numbers as utils::numeric reads them; a non-number throws feq::SpecError
-  // so that the message can name the keyword
+  // Numbers of the package's commands.  A token is a number when
+  // utils::is_double() accepts it; it is read with strtod, so a value
+  // beyond the range of a double is +-inf in every LAMMPS version (from
+  // 2026 on utils::numeric() stops with a message of its own that names
+  // neither command nor keyword): the callers check the range and name
+  // their keyword.
+  // A non-number throws feq::SpecError("not a number").
   feq::NumberParser number_parser(LAMMPS *lmp);
+  // a number for `what` (e.g. "Fix eq/contacts: kc"); a non-number stops
+  // with "<what>: expected a number, got '<tok>'"
+  double numeric(LAMMPS *lmp, const std::string &what, const std::string &tok);
+  // an integer (utils::is_integer() form) for `what`, else the same kind of error
+  bigint bnumeric(LAMMPS *lmp, const std::string &what, const std::string &tok);
   // table files: rank 0 finds the file (current folder, then LAMMPS'
   // potential search path), reads it and broadcasts its contents or the
   // error, so all ranks agree (no rank waits for another that failed)

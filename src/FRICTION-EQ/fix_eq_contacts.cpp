@@ -56,9 +56,10 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
                "threshold <style> <values> [keyword values ...]'");
   if (!atom->tag_enable) error->all(FLERR, "Fix eq/contacts requires atom IDs (atom_modify id yes)");
 
-  kc = utils::numeric(FLERR, arg[3], false, lmp);
-  if (!(kc > 0.0)) error->all(FLERR, "Fix eq/contacts: kc must be > 0 (got {})", arg[3]);
-  seed = utils::bnumeric(FLERR, arg[4], false, lmp);
+  kc = EQUtil::numeric(lmp, "Fix eq/contacts: kc", arg[3]);
+  if (!(kc > 0.0) || !std::isfinite(kc))
+    error->all(FLERR, "Fix eq/contacts: kc must be finite and > 0 (got {})", arg[3]);
+  seed = EQUtil::bnumeric(lmp, "Fix eq/contacts: seed", arg[4]);
   if (seed <= 0) error->all(FLERR, "Fix eq/contacts: seed must be a positive integer (got {})", arg[4]);
 
   // defaults

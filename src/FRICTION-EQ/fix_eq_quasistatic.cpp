@@ -13,6 +13,8 @@
 #include "update.h"
 #include "utils.h"
 
+#include "eq_lammps_util.h"
+
 #include <cmath>
 
 using namespace LAMMPS_NS;
@@ -38,9 +40,10 @@ FixEQQuasistatic::FixEQQuasistatic(LAMMPS *lmp, int narg, char **arg) :
   while (iarg < narg) {
     if (strcmp(arg[iarg], "max") == 0) {
       if (iarg + 1 >= narg) error->all(FLERR, "Fix eq/quasistatic max: missing value (a distance > 0)");
-      dxmax = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      if (!(dxmax > 0.0))
-        error->all(FLERR, "Fix eq/quasistatic max: value must be > 0 (got {})", arg[iarg + 1]);
+      dxmax = EQUtil::numeric(lmp, "Fix eq/quasistatic max", arg[iarg + 1]);
+      if (!(dxmax > 0.0) || !std::isfinite(dxmax))
+        error->all(FLERR, "Fix eq/quasistatic max: value must be finite and > 0 (got {})",
+                   arg[iarg + 1]);
       iarg += 2;
     } else
       error->all(FLERR, "Fix eq/quasistatic: unknown keyword '{}'; allowed: max", arg[iarg]);

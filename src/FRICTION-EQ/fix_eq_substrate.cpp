@@ -52,13 +52,13 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
                       "<shape> <values> [keyword values ...]' with shape one of: {}", SHAPES);
   if (!atom->tag_enable) error->all(FLERR, "Fix eq/substrate requires atom IDs (atom_modify id yes)");
 
-  kc = utils::numeric(FLERR, arg[3], false, lmp);
+  kc = EQUtil::numeric(lmp, "Fix eq/substrate: kc", arg[3]);
   if (!(kc >= 0.0) || !std::isfinite(kc))
     error->all(FLERR, "Fix eq/substrate: kc must be finite and >= 0 (got {})", arg[3]);
 
   const std::vector<std::string> args(arg, arg + narg);
-  // utils::numeric reads 1e400 as inf: every number of this command must be
-  // finite (an infinite stiffness, velocity or stage makes NaN forces)
+  // 1e400 reads as inf: every number of this command must be finite (an
+  // infinite stiffness, velocity or stage makes NaN forces)
   const feq::NumberParser lmp_number = EQUtil::number_parser(lmp);
   const feq::NumberParser number = [&](const std::string &tok) -> double {
     const double v = lmp_number(tok);
@@ -147,7 +147,7 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
         }
         if (iarg >= args.size()) throw feq::SpecError("disorder: missing seed after " + disorder.text);
         const std::string &tok = args[iarg++];
-        if (!utils::is_integer(tok) || (dseed = utils::bnumeric(FLERR, tok.c_str(), false, lmp)) <= 0)
+        if (!utils::is_integer(tok) || (dseed = EQUtil::bnumeric(lmp, "Fix eq/substrate disorder: seed", tok)) <= 0)
           throw feq::SpecError("disorder: seed must be a positive integer (got '" + tok + "')");
       } else {
         throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
@@ -613,7 +613,7 @@ int FixEQSubstrate::modify_param(int narg, char **arg)
                  id, id);
     const int jgroup = group->find(arg[1]);
     if (jgroup < 0) error->all(FLERR, "Fix_modify {} kc: group {} does not exist", id, arg[1]);
-    const double value = utils::numeric(FLERR, arg[2], false, lmp);
+    const double value = EQUtil::numeric(lmp, fmt::format("Fix_modify {} kc", id), arg[2]);
     if (!(value >= 0.0) || !std::isfinite(value))
       error->all(FLERR, "Fix_modify {} kc: value must be finite and >= 0 (got {})", id, arg[2]);
     const int jbit = group->bitmask[jgroup];
@@ -632,12 +632,16 @@ int FixEQSubstrate::modify_param(int narg, char **arg)
                  id, id);
     if (!drive_flag)
       error->all(FLERR, "Fix_modify {} velocity: fix {} has no stage (add the drive keyword)", id, id);
-    const double value = utils::numeric(FLERR, arg[1], false, lmp);
+    const double value = EQUtil::numeric(lmp, fmt::format("Fix_modify {} velocity", id), arg[1]);
     if (!std::isfinite(value))
       error->all(FLERR, "Fix_modify {} velocity: v must be finite (got {})", id, arg[1]);
     vstage = value;
     return 2;
   }
+  // LAMMPS handles its own keywords (energy, virial, respa, ...) before
+  // asking the fix: anything else is unknown
+  error->all(FLERR, "Fix_modify {}: unknown keyword '{}'; allowed: kc, velocity (and LAMMPS' "
+                    "energy, virial, respa)", id, arg[0]);
   return 0;
 }
 

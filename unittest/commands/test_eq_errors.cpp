@@ -64,18 +64,22 @@ TEST_F(EQContactsErrors, Arguments)
   TEST_FAILURE(".*ERROR: Illegal fix eq/contacts command: expected 'fix ID group eq/contacts kc "
                "seed threshold.*",
                fix("1.0"););
-  TEST_FAILURE(".*ERROR: Fix eq/contacts: kc must be > 0 \\(got -1\\).*",
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: kc must be finite and > 0 \\(got -1\\).*",
                fix("-1 5 threshold uniform 0.75 1.25"););
-  TEST_FAILURE(".*ERROR: Fix eq/contacts: kc must be > 0 \\(got 0\\).*",
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: kc must be finite and > 0 \\(got 0\\).*",
                fix("0 5 threshold uniform 0.75 1.25"););
-  TEST_FAILURE(".*ERROR: Expected floating point parameter instead of 'abc'.*",
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: kc: expected a number, got 'abc'.*",
                fix("abc 5 threshold uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: kc must be finite and > 0 \\(got 1e400\\).*",
+               fix("1e400 5 threshold uniform 0.75 1.25"););
   TEST_FAILURE(".*ERROR: Fix eq/contacts: seed must be a positive integer \\(got 0\\).*",
                fix("1.0 0 threshold uniform 0.75 1.25"););
   TEST_FAILURE(".*ERROR: Fix eq/contacts: seed must be a positive integer \\(got -3\\).*",
                fix("1.0 -3 threshold uniform 0.75 1.25"););
-  TEST_FAILURE(".*ERROR: Expected integer parameter instead of '1.5'.*",
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: seed: expected an integer, got '1.5'.*",
                fix("1.0 1.5 threshold uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: seed: integer 99999999999999999999 is out of range.*",
+               fix("1.0 99999999999999999999 threshold uniform 0.75 1.25"););
   TEST_FAILURE(".*ERROR: Fix eq/contacts: the threshold keyword is required; allowed styles: "
                "uniform, gaussian, realistic, table.*",
                fix("1.0 5 reform delta 0.0"););

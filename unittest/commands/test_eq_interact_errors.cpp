@@ -184,7 +184,7 @@ TEST_F(EQInteractErrors, Quasistatic)
                command("fix q all eq/quasistatic"););
   TEST_FAILURE(".*ERROR: Fix eq/quasistatic: unknown keyword 'min'; allowed: max.*",
                command("fix q all eq/quasistatic c min 0.1"););
-  TEST_FAILURE(".*ERROR: Fix eq/quasistatic max: value must be > 0 \\(got -0.1\\).*",
+  TEST_FAILURE(".*ERROR: Fix eq/quasistatic max: value must be finite and > 0 \\(got -0.1\\).*",
                command("fix q all eq/quasistatic c max -0.1"););
   TEST_FAILURE(".*ERROR: Fix eq/quasistatic max: missing value.*",
                command("fix q all eq/quasistatic c max"););

@@ -71,7 +71,7 @@ TEST_F(EQSubstrateErrors, Arguments)
                fix("1.0"););
   TEST_FAILURE(".*ERROR: Fix eq/substrate: kc must be finite and >= 0 \\(got -1\\).*",
                fix("-1 sawtooth 1.0"););
-  TEST_FAILURE(".*ERROR: Expected floating point parameter instead of 'abc'.*",
+  TEST_FAILURE(".*ERROR: Fix eq/substrate: kc: expected a number, got 'abc'.*",
                fix("abc sawtooth 1.0"););
   TEST_FAILURE(".*ERROR: Fix eq/substrate unknown shape 'sine'; allowed: sawtooth, smooth, table.*",
                fix("1.0 sine 1.0"););
@@ -185,7 +185,9 @@ TEST_F(EQSubstrateErrors, FixModify)
                command("fix_modify s kc left"););
   TEST_FAILURE(".*ERROR: Fix_modify s velocity: fix s has no stage \\(add the drive keyword\\).*",
                command("fix_modify s velocity 1e-4"););
-  TEST_FAILURE(".*ERROR: Illegal fix_modify command.*", command("fix_modify s speed 1e-4"););
+  TEST_FAILURE(".*ERROR: Fix_modify s: unknown keyword 'speed'; allowed: kc, velocity \\(and "
+               "LAMMPS' energy, virial, respa\\).*",
+               command("fix_modify s speed 1e-4"););
 }
 
 // A restart file restores the stage position and velocity (the velocity of
