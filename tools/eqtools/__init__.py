@@ -20,7 +20,7 @@ def build_dir():
 
 
 def lmp_exe():
-    return os.environ.get("FEQ_LMP", str(build_dir() / "lammps" / "lmp"))
+    return os.environ.get("FEQ_LMP", str(build_dir() / "lmp"))
 
 
 def eqme_exe():
