@@ -1,0 +1,233 @@
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package: break engine of the EQ model (see eq_contact.h)
+------------------------------------------------------------------------- */
+
+#include "eq_contact.h"
+
+#include "eq_random.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace feq {
+
+namespace {
+std::string num(double v)
+{
+  std::ostringstream o;
+  o.precision(10);
+  o << v;
+  return o.str();
+}
+}    // namespace
+
+ContactModel::ContactModel(double kc, uint64_t seed_, const DistributionSpec &threshold_,
+                           const DistributionSpec &reform_, const DistributionSpec &stiffness_,
+                           bool exact_, bool reform_force_, bool start_reform_) :
+    k0(kc), seed(seed_), threshold(threshold_), reform(reform_), stiffness(stiffness_),
+    exact(exact_), reform_force(reform_force_), start_reform(start_reform_)
+{
+  if (!threshold.dist) throw SpecError("threshold: missing distribution");
+  if (!(k0 > 0.0) || !std::isfinite(k0)) throw SpecError("kc must be finite and > 0");
+  if (!stiffness.dist) {
+    stiffness.dist = make_delta(1.0);
+    stiffness.text = "constant";
+  }
+  if (start_reform && !reform.dist)
+    throw SpecError("start reform needs contacts that re-form (reform none given)");
+  check_reform(*threshold.dist, reform);
+  reform_point = reform.dist && reform.dist->is_point();
+  reform_value = reform.dist ? reform.dist->mean() : 0.0;
+  stiffness_const = stiffness.text == "constant";
+  // re-forming stretches are drawn from R truncated to |r| < max x_s (a
+  // weight below REFORM_BEYOND_TOLERANCE, checked above), so that no draw
+  // can abort a run
+  reform_top = threshold.dist->effective_upper();
+  if (reform.dist) {
+    reform_cdf_lo = reform.dist->cdf(-reform_top);
+    reform_cdf_hi = reform.dist->cdf(std::nextafter(reform_top, -reform_top));
+  } else {
+    reform_cdf_lo = 0.0;
+    reform_cdf_hi = 1.0;
+  }
+}
+
+double ContactModel::draw_reform(uint64_t tag, uint64_t event, uint32_t stream) const
+{
+  if (reform_point) return reform_value;
+  const Uniform u = draw(seed, tag, event, stream);
+  const double r = reform.dist->sample(u);
+  if (std::fabs(r) < reform_top) return r;
+  return reform.dist->quantile(reform_cdf_lo + u.u * (reform_cdf_hi - reform_cdf_lo));
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ContactModel::form(double *st, uint64_t tag, double xu) const
+{
+  const bool reentry = st[CS_STIFFNESS] < 0.0;
+  const uint64_t event = reentry ? (uint64_t) st[CS_NBREAK] : 0;
+  const uint32_t off = reentry ? (uint32_t) STREAM_REENTRY : 0u;
+  const double s0 = start_reform ? draw_reform(tag, event, STREAM_REFORM + off) : 0.0;
+  const double k = stiffness_const
+      ? k0
+      : k0 * stiffness.dist->sample(draw(seed, tag, event, STREAM_STIFFNESS + off));
+  const double th =
+      threshold.dist->sample_above(std::fabs(s0), draw(seed, tag, event, STREAM_THRESHOLD + off));
+  if (!(th > 0.0))
+    throw BreakError("initial stretch " + num(s0) + " of contact " + std::to_string(tag) +
+                     " is not below the largest breaking threshold");
+  st[CS_STRETCH] = s0;
+  st[CS_THRESHOLD] = th;
+  st[CS_FORCE] = k * s0;
+  st[CS_NBREAK] = (double) event;
+  st[CS_STIFFNESS] = k;
+  st[CS_ANCHOR] = xu - s0;
+  st[CS_FIELD] = 0.0;
+}
+
+void ContactModel::depart(double *st)
+{
+  if (st[CS_THRESHOLD] > 0.0) {
+    st[CS_THRESHOLD] = 0.0;
+    st[CS_STIFFNESS] = -1.0;    // marks a re-entry for form()
+    st[CS_STRETCH] = st[CS_FORCE] = st[CS_FIELD] = 0.0;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   event `event` happened: new threshold above |r| (and stiffness);
+   returns r (NaN: the contact detached for good)
+------------------------------------------------------------------------- */
+
+double ContactModel::renew(double *st, uint64_t tag, uint64_t event) const
+{
+  st[CS_NBREAK] = (double) event;
+  if (!reform.dist) {    // never re-forms: detached for good
+    st[CS_THRESHOLD] = -1.0;
+    st[CS_STIFFNESS] = 0.0;
+    st[CS_STRETCH] = st[CS_FORCE] = st[CS_FIELD] = 0.0;
+    return NAN;
+  }
+  const double r = draw_reform(tag, event, STREAM_REFORM);
+  if (!stiffness_const)
+    st[CS_STIFFNESS] = k0 * stiffness.dist->sample(draw(seed, tag, event, STREAM_STIFFNESS));
+  const double th =
+      threshold.dist->sample_above(std::fabs(r), draw(seed, tag, event, STREAM_THRESHOLD));
+  if (!(th > 0.0))    // only if the survival function underflows at |r|
+    throw BreakError("contact " + std::to_string(tag) + " re-formed with stretch " + num(r) +
+                     ", where no breaking threshold of " + threshold.text +
+                     " lies above it; check the reform distribution");
+  st[CS_THRESHOLD] = th;
+  return r;
+}
+
+double ContactModel::break_once(double *st, uint64_t tag, double e, double h, double K) const
+{
+  if (!std::isfinite(e))
+    throw BreakError("force of contact " + std::to_string(tag) + " is " + num(e * st[CS_STIFFNESS]) +
+                     " (numerical instability: check the timestep, the forces, the integrator "
+                     "and the pair eq/elastic coefficients" +
+                     (reform_force ? std::string(")")
+                                   : std::string("; with reform_as stretch a re-formed contact can "
+                                                 "carry its partners' force beyond its threshold "
+                                                 "and break without end: use reform_as force or "
+                                                 "a smaller ftilde)")));
+  const double sign = e > 0.0 ? 1.0 : -1.0;
+  const double over = exact ? e - sign * st[CS_THRESHOLD] : 0.0;
+  const double s_old = st[CS_STRETCH];
+  const double r = renew(st, tag, (uint64_t) st[CS_NBREAK] + 1);
+  if (std::isnan(r)) return 0.0;
+  const double target = sign * r + over;    // new force / k
+  double s_new = target;
+  if (reform_force && K != 0.0) {
+    const double k = st[CS_STIFFNESS];
+    const double m = s_old * K - h;    // sum_j k_ij x_j
+    s_new = (k * target + m) / (k + K);
+  }
+  st[CS_STRETCH] = s_new;
+  st[CS_ANCHOR] += s_old - s_new;
+  return s_new;
+}
+
+/* ----------------------------------------------------------------------
+   LAMMPS keeps the image count in IMGBITS bits: after IMGMAX periodic
+   crossings it wraps, and the unwrapped coordinate jumps by 2 IMGMAX box
+   lengths.  No stretch can be that large: the caller undoes the jump
+   (eq_lammps_util) before calling resolve().
+------------------------------------------------------------------------- */
+
+double ContactModel::resolve(double *st, uint64_t tag, double s, double tol, long &nbreaks) const
+{
+  int nb = 0;
+  while (!(std::fabs(s) < st[CS_THRESHOLD] - tol)) {
+    if (!std::isfinite(s))
+      throw BreakError("stretch of contact " + std::to_string(tag) + " is " + num(s) +
+                       " (numerical instability: check the timestep, the forces and the "
+                       "integrator)");
+    if (++nb > MAX_BREAKS_PER_STEP)
+      throw BreakError("contact " + std::to_string(tag) + " broke more than " +
+                       std::to_string(MAX_BREAKS_PER_STEP) + " times in one step (stretch " +
+                       num(s) + "); reduce the timestep or check the reform and threshold "
+                                "distributions");
+    const double sign = s > 0.0 ? 1.0 : -1.0;
+    const double over = exact ? s - sign * st[CS_THRESHOLD] : 0.0;
+    ++nbreaks;
+    const double r = renew(st, tag, (uint64_t) st[CS_NBREAK] + 1);
+    if (std::isnan(r)) return 0.0;
+    s = sign * r + over;
+  }
+  return s;
+}
+
+/* ---------------------------------------------------------------------- */
+
+AvalancheResult avalanche(const ContactModel &model, double *const *rows, const int *members,
+                          int nmembers, double tol, AvalancheHooks &hooks, std::vector<int> &list,
+                          std::vector<double> &ds)
+{
+  AvalancheResult res;
+  int top = -1;
+  for (int m = 0; m < nmembers; ++m) top = std::max(top, members[m]);
+  if ((int) ds.size() < top + 1) ds.resize(top + 1);
+  list.reserve(nmembers);
+  while (true) {
+    // all contacts over their thresholds at the start of the round
+    list.clear();
+    for (int m = 0; m < nmembers; ++m) {
+      const int i = members[m];
+      const double *st = rows[i];
+      const double th = st[CS_THRESHOLD];
+      if (th <= 0.0) continue;
+      const double e = st[CS_STRETCH] + hooks.field(i) / st[CS_STIFFNESS];
+      if (!(std::fabs(e) < th - ContactModel::tolerance(st, tol))) list.push_back(i);
+    }
+    const long all = hooks.global_sum((long) list.size());
+    if (all == 0) break;
+    if (++res.rounds > AVALANCHE_MAX_ROUNDS)
+      throw BreakError("avalanche did not stop after " + std::to_string(AVALANCHE_MAX_ROUNDS) +
+                       " rounds (" + std::to_string(res.size) +
+                       " breaks); the interaction is too strong for the contacts (check the pair "
+                       "eq/elastic coefficients against k_i" +
+                       (model.reform_as_force()
+                            ? std::string(")")
+                            : std::string("; with reform_as stretch use reform_as force or a "
+                                          "smaller ftilde)")));
+    if (res.rounds == 1) res.trigger = all;
+    res.size += all;
+    for (const int i : list) {
+      double *st = rows[i];
+      const double h = hooks.field(i);
+      const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
+      const double s_old = st[CS_STRETCH];
+      ds[i] = model.break_once(st, hooks.tag(i), e, h, hooks.coupling(i)) - s_old;
+    }
+    res.local += (long) list.size();
+    if (!model.reforms()) hooks.detached();
+    else hooks.changed(list.data(), (int) list.size(), ds.data());
+  }
+  return res;
+}
+
+}    // namespace feq

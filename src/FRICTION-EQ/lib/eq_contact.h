@@ -1,0 +1,164 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   FRICTION-EQ package: the break engine of the EQ model (paper Sec. II,
+   and Sec. IV for interacting contacts).  LAMMPS-free: fix eq/contacts
+   keeps one row of CS_NCOL doubles per contact (its per-atom array) and
+   hands the rows to this engine, for the stepping path (a slider step,
+   breaks resolved at the end of it) and for the quasi-static path (the
+   slider advanced exactly to the next break) alike.
+
+   A contact is a spring of stiffness k between the slider (an atom, its
+   top end) and an anchor on the substrate.  Its stretch is s = x - anchor
+   along the sliding direction.  It breaks when its effective stretch
+   e = s + h/k (h: the elastic field of the other contacts, 0 without
+   interaction) reaches its threshold x_s ~ P_c in absolute value, and
+   re-forms with a stretch r ~ R (mirrored, -r, when it broke with e < 0);
+   its new threshold is drawn above |r| and, with per-contact stiffness,
+   its new k.  All draws are stateless (seed, atom tag, break count,
+   stream), so a contact's history does not depend on where it is
+   computed.
+
+   crossing exact: the load that took the contact past its threshold is
+   continuous, so the contact broke where e reached x_s and the overshoot
+   e - x_s goes on into the new contact (Abelian cascades; fixed slider
+   steps are exact at their ends).  crossing step: nothing is carried (the
+   cellular-automaton convention).
+
+   reform_as force (interacting contacts): the new contact carries force
+   k r (+ carry) with the interaction included: its stretch solves
+   k s' + h' = k target with h' = h + K (s' - s), K = sum_j k_ij;
+   reform_as stretch: the new spring simply has stretch target.
+
+   Avalanche (interacting contacts): synchronous rounds; in each round all
+   contacts over their thresholds at its start break at once, then the
+   field changes by the scattered stretch changes, until no contact is
+   over its threshold anywhere (independent of the decomposition).
+------------------------------------------------------------------------- */
+
+#ifndef FEQ_CONTACT_H
+#define FEQ_CONTACT_H
+
+#include "eq_distribution.h"
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace feq {
+
+// columns of a contact's state row (the per-atom array of fix eq/contacts)
+enum ContactColumn : int {
+  CS_STRETCH,      // s = x - anchor (0 while detached)
+  CS_THRESHOLD,    // x_s; 0: no contact formed yet; < 0: detached for good
+  CS_FORCE,        // k s of the last force evaluation
+  CS_NBREAK,       // breaks so far (the event counter of the draws)
+  CS_STIFFNESS,    // k; < 0 marks an atom that left the group (re-entry)
+  CS_ANCHOR,       // anchor on the substrate (unwrapped coordinate along dir)
+  CS_FIELD,        // h of the elastic field at the last force evaluation
+  CS_NCOL
+};
+
+// a contact cannot be handled (numerical instability, runaway breaking):
+// the message names the contact and what to change
+class BreakError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class ContactModel {
+ public:
+  // thresholds P_c, re-forming stretches R (dist null: never re-form) and
+  // per-contact stiffness factors (text "constant": all k = kc)
+  ContactModel(double kc, uint64_t seed, const DistributionSpec &threshold,
+               const DistributionSpec &reform, const DistributionSpec &stiffness, bool exact,
+               bool reform_force, bool start_reform);
+
+  // a contact forms at an atom with unwrapped coordinate xu: its first
+  // formation (event 0), or a re-entry into the group (row marked by
+  // CS_STIFFNESS < 0: the re-entry streams at its current break count)
+  void form(double *st, uint64_t tag, double xu) const;
+  // an atom left the group: no contact until it comes back
+  static void depart(double *st);
+
+  // one break of a contact whose effective stretch e reached its
+  // threshold; h, K: its field and coupling (0, 0 without interaction).
+  // Returns the new stretch (0 when it detached for good: CS_THRESHOLD < 0).
+  double break_once(double *st, uint64_t tag, double e, double h, double K) const;
+
+  // without interaction: every break of one contact within a step, until
+  // |s| < x_s - tol; returns the new stretch and adds to nbreaks
+  double resolve(double *st, uint64_t tag, double s, double tol, long &nbreaks) const;
+
+  // the breaking test, |e| >= x_s - tol, with the tolerance of quasi-static
+  // driving (relative; 0 for a plain test) scaled by the magnitudes involved
+  static double tolerance(const double *st, double rel)
+  {
+    return rel > 0.0 ? rel * (1.0 + std::abs(st[CS_ANCHOR]) + std::abs(st[CS_STRETCH])) : 0.0;
+  }
+
+  bool reforms() const { return reform.dist != nullptr; }
+  bool exact_crossing() const { return exact; }
+  bool reform_as_force() const { return reform_force; }
+  double kc() const { return k0; }
+  const DistributionSpec &threshold_spec() const { return threshold; }
+  const DistributionSpec &reform_spec() const { return reform; }
+  const DistributionSpec &stiffness_spec() const { return stiffness; }
+
+  // at most this many breaks of one contact within one step
+  static constexpr int MAX_BREAKS_PER_STEP = 1000;
+
+ private:
+  double k0;
+  uint64_t seed;
+  DistributionSpec threshold, reform, stiffness;
+  bool exact, reform_force, start_reform;
+  bool reform_point, stiffness_const;
+  double reform_value;
+  double reform_cdf_lo, reform_cdf_hi;    // R truncated to |r| < max threshold
+  double reform_top;                      // max threshold (effective for unbounded P_c)
+
+  double draw_reform(uint64_t tag, uint64_t event, uint32_t stream) const;
+  // new threshold (and stiffness) after event `event`; returns the re-forming stretch r
+  double renew(double *st, uint64_t tag, uint64_t event) const;
+};
+
+/* ----------------------------------------------------------------------
+   avalanche rounds over contacts coupled by an elastic field
+------------------------------------------------------------------------- */
+
+// what the avalanche needs from its surroundings (LAMMPS: MPI, the field
+// of pair eq/elastic, the atoms of the group)
+class AvalancheHooks {
+ public:
+  virtual ~AvalancheHooks() = default;
+  virtual long global_sum(long n) = 0;    // over all ranks
+  // contacts list[0..n) changed their stretch by ds[list[m]] at fixed positions
+  virtual void changed(const int *list, int n, const double *ds) = 0;
+  // contacts detached for good: the field is recomputed without them
+  virtual void detached() = 0;
+  virtual double field(int i) const = 0;       // h_i
+  virtual double coupling(int i) const = 0;    // K_i = sum_j k_ij
+  virtual uint64_t tag(int i) const = 0;
+};
+
+struct AvalancheResult {
+  long size = 0;       // breaks (a contact breaking in several rounds counts each time)
+  long trigger = 0;    // breaks of the first round
+  int rounds = 0;      // rounds with breaks
+  long local = 0;      // breaks of the contacts given to this call (this rank)
+};
+
+// the contacts are rows[members[m]], m < nmembers (detached ones are
+// skipped); every round scans them all.  tol: relative tolerance of the
+// breaking test (see tolerance()).  list, ds: scratch (ds indexed by row).
+AvalancheResult avalanche(const ContactModel &model, double *const *rows, const int *members,
+                          int nmembers, double tol, AvalancheHooks &hooks, std::vector<int> &list,
+                          std::vector<double> &ds);
+
+// an avalanche may take at most this many rounds
+constexpr int AVALANCHE_MAX_ROUNDS = 100000;
+
+}    // namespace feq
+
+#endif

@@ -1,0 +1,411 @@
+// Unit tests: the break engine of the EQ model (lib/eq_contact).  The
+// references are independent of the engine's own loops: closed forms of
+// the renewal process, a sequential (one break at a time) cascade written
+// here, a mock field recomputed from scratch after every change, and the
+// Abelian property of exact crossing.
+#include "eq_contact.h"
+#include "eq_distribution.h"
+#include "eq_random.h"
+
+#include "gtest/gtest.h"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+using namespace feq;
+
+namespace {
+
+DistributionSpec spec(DistributionPtr d, const std::string &text)
+{
+  DistributionSpec s;
+  s.dist = std::move(d);
+  s.text = text;
+  return s;
+}
+
+DistributionSpec none()
+{
+  return DistributionSpec{};
+}
+
+ContactModel model(bool exact, bool reform_force, DistributionSpec reform,
+                   DistributionSpec stiffness = DistributionSpec{})
+{
+  return ContactModel(1.0, 4711, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"),
+                      std::move(reform), std::move(stiffness), exact, reform_force, false);
+}
+
+std::vector<double> fresh_row(const ContactModel &m, uint64_t tag, double xu)
+{
+  std::vector<double> row(CS_NCOL, 0.0);
+  m.form(row.data(), tag, xu);
+  return row;
+}
+
+// a field h_i = sum_j k_ij (s_i - s_j) over a dense symmetric matrix,
+// recomputed from the stretches after every change (no incremental update)
+class DenseField : public AvalancheHooks {
+ public:
+  DenseField(std::vector<std::vector<double>> kmat, std::vector<double *> rows) :
+      k(std::move(kmat)), rows(std::move(rows)), h(k.size(), 0.0), K(k.size(), 0.0)
+  {
+    recompute();
+  }
+  void recompute()
+  {
+    const size_t n = k.size();
+    for (size_t i = 0; i < n; ++i) {
+      h[i] = K[i] = 0.0;
+      if (!(rows[i][CS_THRESHOLD] > 0.0)) continue;
+      for (size_t j = 0; j < n; ++j) {
+        if (j == i || !(rows[j][CS_THRESHOLD] > 0.0)) continue;
+        K[i] += k[i][j];
+        h[i] += k[i][j] * (rows[i][CS_STRETCH] - rows[j][CS_STRETCH]);
+      }
+    }
+  }
+  long global_sum(long n) override { return n; }
+  void changed(const int *, int n, const double *) override
+  {
+    ++nchanged;
+    nbroken += n;
+    recompute();
+  }
+  void detached() override
+  {
+    ++ndetached;
+    recompute();
+  }
+  double field(int i) const override { return h[i]; }
+  double coupling(int i) const override { return K[i]; }
+  uint64_t tag(int i) const override { return 100 + i; }
+
+  std::vector<std::vector<double>> k;
+  std::vector<double *> rows;
+  std::vector<double> h, K;
+  int nchanged = 0, ndetached = 0;
+  long nbroken = 0;
+};
+
+// chain of n contacts, nearest neighbours coupled by g, periodic
+std::vector<std::vector<double>> chain_matrix(int n, double g)
+{
+  std::vector<std::vector<double>> k(n, std::vector<double>(n, 0.0));
+  for (int i = 0; i < n; ++i) {
+    k[i][(i + 1) % n] += g;
+    k[(i + 1) % n][i] += g;
+  }
+  return k;
+}
+
+}    // namespace
+
+// a new contact: relaxed at the atom, threshold from the stateless draw of
+// event 0 (the inverse transform of the uniform variate, written out here)
+TEST(ContactModel, FormsRelaxedWithTheEventZeroThreshold)
+{
+  const ContactModel m = model(true, true, spec(make_delta(0.0), "delta 0"));
+  const auto row = fresh_row(m, 17, 3.25);
+  const Uniform u = draw(4711, 17, 0, STREAM_THRESHOLD);
+  // uniform on [0.75, 1.25]: sample() maps u < 1/2 to the upper tail
+  const double expect = u.u < 0.5 ? 1.25 - 0.5 * u.u : 0.75 + 0.5 * u.one_minus_u;
+  EXPECT_NEAR(row[CS_THRESHOLD], expect, 1e-15);
+  EXPECT_EQ(row[CS_STRETCH], 0.0);
+  EXPECT_EQ(row[CS_ANCHOR], 3.25);
+  EXPECT_EQ(row[CS_NBREAK], 0.0);
+  EXPECT_EQ(row[CS_STIFFNESS], 1.0);
+}
+
+// A re-entry into the group draws from the re-entry streams: not the
+// threshold of the first formation
+TEST(ContactModel, ReentryDrawsNewNumbers)
+{
+  const ContactModel m = model(true, true, spec(make_delta(0.0), "delta 0"));
+  auto row = fresh_row(m, 17, 0.0);
+  const double first = row[CS_THRESHOLD];
+  ContactModel::depart(row.data());
+  EXPECT_EQ(row[CS_THRESHOLD], 0.0);
+  EXPECT_LT(row[CS_STIFFNESS], 0.0);
+  m.form(row.data(), 17, 1.0);
+  EXPECT_GT(row[CS_THRESHOLD], 0.75);
+  EXPECT_NE(row[CS_THRESHOLD], first);
+  EXPECT_EQ(row[CS_ANCHOR], 1.0);
+}
+
+// Exact crossing, R = delta(0): a displacement D resolved in one step
+// leaves the stretch D - (sum of the thresholds passed), the renewal
+// identity; the same D in 1, 3 and 17 equal steps gives the same breaks
+// and the same stretch (the step size drops out: Abelian in time)
+TEST(ContactModel, ExactCrossingIndependentOfTheStep)
+{
+  const ContactModel m = model(true, false, spec(make_delta(0.0), "delta 0"));
+  const double D = 7.3;
+  double s_ref = 0.0;
+  long nb_ref = 0;
+  for (int nsteps : {1, 3, 17}) {
+    auto row = fresh_row(m, 5, 0.0);
+    double x = 0.0, passed = 0.0;
+    long nb = 0;
+    for (int k = 1; k <= nsteps; ++k) {
+      const double xn = D * k / nsteps;
+      double s = row[CS_STRETCH] + (xn - x);
+      // thresholds passed in this step: read them as the contact renews
+      double th = row[CS_THRESHOLD];
+      const long before = nb;
+      s = m.resolve(row.data(), 5, s, 0.0, nb);
+      // reconstruct the passed thresholds from the draws of the events
+      for (long e = before; e < nb; ++e) {
+        passed += th;
+        th = make_uniform(0.75, 1.25)->sample_above(0.0, draw(4711, 5, e + 1, STREAM_THRESHOLD));
+      }
+      row[CS_STRETCH] = s;
+      x = xn;
+    }
+    EXPECT_NEAR(row[CS_STRETCH], D - passed, 1e-12) << nsteps;
+    EXPECT_NEAR(nb, std::floor(D / 1.0), 2) << nsteps;    // mean threshold 1
+    if (nsteps == 1) {
+      s_ref = row[CS_STRETCH];
+      nb_ref = nb;
+    } else {
+      EXPECT_NEAR(row[CS_STRETCH], s_ref, 1e-12) << nsteps;
+      EXPECT_EQ(nb, nb_ref) << nsteps;
+    }
+  }
+}
+
+// Step crossing: every break re-forms at r = 0 at the end of the step, so
+// a step that passes a threshold leaves the stretch exactly 0
+TEST(ContactModel, StepCrossingResets)
+{
+  const ContactModel m = model(false, false, spec(make_delta(0.0), "delta 0"));
+  auto row = fresh_row(m, 9, 0.0);
+  long nb = 0;
+  const double s = m.resolve(row.data(), 9, 1.3, 0.0, nb);
+  EXPECT_EQ(nb, 1);
+  EXPECT_EQ(s, 0.0);
+  EXPECT_EQ(row[CS_NBREAK], 1.0);
+}
+
+// A contact broken with negative stretch re-forms with the mirrored
+// stretch: -r plus the (negative) carry
+TEST(ContactModel, NegativeBreakMirrors)
+{
+  const ContactModel m = model(true, false, spec(make_delta(0.1), "delta 0.1"));
+  auto row = fresh_row(m, 3, 0.0);
+  const double th = row[CS_THRESHOLD];
+  long nb = 0;
+  const double s = m.resolve(row.data(), 3, -(th + 0.05), 0.0, nb);
+  EXPECT_EQ(nb, 1);
+  EXPECT_NEAR(s, -0.1 - 0.05, 1e-14);
+}
+
+// reform none: the contact detaches for good
+TEST(ContactModel, ReformNoneDetaches)
+{
+  const ContactModel m = model(true, false, none());
+  auto row = fresh_row(m, 3, 0.0);
+  long nb = 0;
+  EXPECT_EQ(m.resolve(row.data(), 3, 2.0, 0.0, nb), 0.0);
+  EXPECT_EQ(nb, 1);
+  EXPECT_LT(row[CS_THRESHOLD], 0.0);
+}
+
+// the breaking test with a tolerance: a contact within tol of its
+// threshold breaks (quasi-static driving lands exactly on it)
+TEST(ContactModel, ToleranceBreaksAtTheThreshold)
+{
+  const ContactModel m = model(true, false, spec(make_delta(0.0), "delta 0"));
+  auto row = fresh_row(m, 4, 0.0);
+  const double th = row[CS_THRESHOLD];
+  row[CS_STRETCH] = th * (1.0 - 1e-13);
+  long nb = 0;
+  m.resolve(row.data(), 4, row[CS_STRETCH], 0.0, nb);
+  EXPECT_EQ(nb, 0);
+  const double tol = ContactModel::tolerance(row.data(), 1e-12);
+  EXPECT_NEAR(tol, 1e-12 * (1.0 + th * (1.0 - 1e-13)), 1e-25);
+  m.resolve(row.data(), 4, row[CS_STRETCH], 1e-12, nb);
+  EXPECT_EQ(nb, 1);
+}
+
+TEST(ContactModel, RunawayAndNonFiniteAreErrors)
+{
+  const ContactModel m = model(true, false, spec(make_delta(0.0), "delta 0"));
+  auto row = fresh_row(m, 4, 0.0);
+  long nb = 0;
+  EXPECT_THROW(m.resolve(row.data(), 4, 5000.0, 0.0, nb), BreakError);
+  row = fresh_row(m, 4, 0.0);
+  EXPECT_THROW(m.resolve(row.data(), 4, std::numeric_limits<double>::infinity(), 0.0, nb),
+               BreakError);
+  EXPECT_THROW(m.break_once(row.data(), 4, std::nan(""), 0.0, 0.0), BreakError);
+}
+
+// the interacting path with zero coupling is the plain path
+TEST(ContactModel, BreakOnceWithoutFieldEqualsResolve)
+{
+  const ContactModel m = model(true, true, spec(make_gaussian(0.0, 0.05, -INFINITY), "gaussian"));
+  auto a = fresh_row(m, 21, 0.0), b = a;
+  long nb = 0;
+  const double sa = m.resolve(a.data(), 21, 1.3, 0.0, nb);
+  ASSERT_EQ(nb, 1);
+  b[CS_STRETCH] = 1.3;
+  const double sb = m.break_once(b.data(), 21, 1.3, 0.0, 0.0);
+  EXPECT_EQ(sa, sb);
+  EXPECT_EQ(a[CS_THRESHOLD], b[CS_THRESHOLD]);
+}
+
+// reform_as force: the re-formed contact carries force k (r + carry) with
+// the field included: k s' + h' = k target, h' = h + K (s' - s)
+TEST(ContactModel, ReformAsForceBalancesTheField)
+{
+  const ContactModel m = model(true, true, spec(make_delta(0.0), "delta 0"));
+  auto row = fresh_row(m, 8, 0.0);
+  const double th = row[CS_THRESHOLD];
+  const double s = 0.9, h = th + 0.02 - s, K = 0.3;    // k = 1: e = s + h = th + 0.02
+  row[CS_STRETCH] = s;
+  const double e = s + h;
+  const double sn = m.break_once(row.data(), 8, e, h, K);
+  const double hn = h + K * (sn - s);
+  EXPECT_NEAR(1.0 * sn + hn, e - th, 1e-14);    // target = r + carry = 0 + (e - x_s)
+  EXPECT_NEAR(row[CS_ANCHOR], s - sn, 1e-14);
+}
+
+// Avalanche rounds: a chain at stretches just below threshold, one
+// contact pushed over.  Checked against a sequential cascade written here
+// (one break at a time, lowest index first, field recomputed): with exact
+// crossing and reform_as force every break lowers the stretch by
+// k (r - x_s)/(k + K) whatever the state, so the set of breaks and the
+// final state do not depend on the order (Abelian cascade).  Every round
+// breaks exactly the contacts over their thresholds at its start, and
+// none is over its threshold at the end.
+TEST(Avalanche, SynchronousEqualsSequentialForExactCrossing)
+{
+  const int n = 24;
+  const ContactModel m = model(true, true, spec(make_delta(0.0), "delta 0"));
+  for (double g : {0.005, 0.3, 1.5}) {
+    std::vector<std::vector<double>> a(n), b(n);
+    for (int i = 0; i < n; ++i) {
+      a[i] = fresh_row(m, 100 + i, 0.0);
+      // stretch just below threshold, contact 7 over it
+      const double th = a[i][CS_THRESHOLD];
+      a[i][CS_STRETCH] = i == 7 ? th + 0.2 : th - 0.01 * (1 + i % 3);
+      a[i][CS_ANCHOR] = -a[i][CS_STRETCH];
+      b[i] = a[i];
+    }
+    std::vector<double *> ra, rb;
+    for (int i = 0; i < n; ++i) ra.push_back(a[i].data()), rb.push_back(b[i].data());
+    DenseField fa(chain_matrix(n, g), ra), fb(chain_matrix(n, g), rb);
+
+    // contacts over their thresholds in the initial field: the first round
+    long over = 0;
+    for (int i = 0; i < n; ++i)
+      if (!(std::fabs(a[i][CS_STRETCH] + fa.h[i]) < a[i][CS_THRESHOLD])) ++over;
+
+    // engine
+    std::vector<int> members(n), list;
+    for (int i = 0; i < n; ++i) members[i] = i;
+    std::vector<double> ds;
+    const AvalancheResult res = avalanche(m, ra.data(), members.data(), n, 0.0, fa, list, ds);
+
+    // sequential reference
+    long seq = 0;
+    for (int guard = 0; guard < 100000; ++guard) {
+      int who = -1;
+      for (int i = 0; i < n && who < 0; ++i) {
+        const double e = b[i][CS_STRETCH] + fb.h[i] / b[i][CS_STIFFNESS];
+        if (!(std::fabs(e) < b[i][CS_THRESHOLD])) who = i;
+      }
+      if (who < 0) break;
+      const double e = b[who][CS_STRETCH] + fb.h[who] / b[who][CS_STIFFNESS];
+      m.break_once(b[who].data(), 100 + who, e, fb.h[who], fb.K[who]);
+      fb.recompute();
+      ++seq;
+    }
+    EXPECT_EQ(res.size, seq) << g;
+    EXPECT_EQ(res.local, seq) << g;
+    EXPECT_GE(res.rounds, 1);
+    EXPECT_EQ(res.trigger, over) << g;
+    for (int i = 0; i < n; ++i) {
+      EXPECT_EQ(a[i][CS_NBREAK], b[i][CS_NBREAK]) << g << " " << i;
+      EXPECT_NEAR(a[i][CS_STRETCH], b[i][CS_STRETCH], 1e-12) << g << " " << i;
+      const double e = a[i][CS_STRETCH] + fa.h[i] / a[i][CS_STIFFNESS];
+      EXPECT_LT(std::fabs(e), a[i][CS_THRESHOLD]) << g << " " << i;
+    }
+    // weak coupling: only the pushed contact breaks; strong: the avalanche
+    // runs through the chain over several rounds
+    if (g == 0.005) {
+      EXPECT_EQ(res.size, 1);
+    }
+    if (g == 1.5) {
+      EXPECT_GT(res.rounds, 2);
+    }
+  }
+}
+
+// rounds are synchronous: two contacts over threshold at the start both
+// break in round 1 (trigger 2), whatever their order
+TEST(Avalanche, RoundsAreSynchronous)
+{
+  const ContactModel m = model(false, false, spec(make_delta(0.0), "delta 0"));
+  const int n = 4;
+  std::vector<std::vector<double>> a(n);
+  std::vector<double *> ra;
+  for (int i = 0; i < n; ++i) {
+    a[i] = fresh_row(m, 100 + i, 0.0);
+    a[i][CS_STRETCH] = (i == 1 || i == 2) ? 1.3 : 0.1;
+    ra.push_back(a[i].data());
+  }
+  DenseField f(chain_matrix(n, 0.01), ra);
+  std::vector<int> members{0, 1, 2, 3}, list;
+  std::vector<double> ds;
+  const AvalancheResult res = avalanche(m, ra.data(), members.data(), n, 0.0, f, list, ds);
+  EXPECT_EQ(res.trigger, 2);
+  EXPECT_EQ(res.size, 2);
+  EXPECT_EQ(res.rounds, 1);
+  EXPECT_EQ(f.nchanged, 1);
+  // step crossing, reform_as stretch: both re-formed at exactly 0
+  EXPECT_EQ(a[1][CS_STRETCH], 0.0);
+  EXPECT_EQ(a[2][CS_STRETCH], 0.0);
+}
+
+// reform none: the field is rebuilt without the detached contacts
+TEST(Avalanche, DetachedContactsLeaveTheField)
+{
+  const ContactModel m = model(true, true, none());
+  const int n = 3;
+  std::vector<std::vector<double>> a(n);
+  std::vector<double *> ra;
+  for (int i = 0; i < n; ++i) {
+    a[i] = fresh_row(m, 100 + i, 0.0);
+    a[i][CS_STRETCH] = i == 0 ? 2.0 : 0.1;
+    ra.push_back(a[i].data());
+  }
+  DenseField f(chain_matrix(n, 0.01), ra);
+  std::vector<int> members{0, 1, 2}, list;
+  std::vector<double> ds;
+  const AvalancheResult res = avalanche(m, ra.data(), members.data(), n, 0.0, f, list, ds);
+  EXPECT_EQ(res.size, 1);
+  EXPECT_EQ(f.ndetached, 1);
+  EXPECT_EQ(f.K[0], 0.0);
+  EXPECT_NEAR(f.K[1], 0.01, 1e-15);    // only contact 2 left as its partner
+}
+
+// reform_as stretch with a coupling far above k: a re-formed contact
+// carries its partners' force past its threshold again, without end
+TEST(Avalanche, RunawayIsAnError)
+{
+  const ContactModel m = model(true, false, spec(make_delta(0.0), "delta 0"));
+  const int n = 2;
+  std::vector<std::vector<double>> a(n);
+  std::vector<double *> ra;
+  for (int i = 0; i < n; ++i) {
+    a[i] = fresh_row(m, 100 + i, 0.0);
+    a[i][CS_STRETCH] = i == 0 ? 1.3 : -1.3;
+    ra.push_back(a[i].data());
+  }
+  DenseField f(chain_matrix(n, 50.0), ra);
+  std::vector<int> members{0, 1}, list;
+  std::vector<double> ds;
+  EXPECT_THROW(avalanche(m, ra.data(), members.data(), n, 0.0, f, list, ds), BreakError);
+}
