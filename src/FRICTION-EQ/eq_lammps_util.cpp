@@ -4,6 +4,8 @@
 
 #include "eq_lammps_util.h"
 
+#include "atom.h"
+#include "domain.h"
 #include "error.h"
 #include "lammps.h"
 #include "pointers.h"
@@ -84,4 +86,23 @@ feq::FileLoader EQUtil::file_loader(LAMMPS *lmp)
     bcast_string(text, lmp->world);
     return text;
   };
+}
+
+/* ---------------------------------------------------------------------- */
+
+EQUtil::Unwrap::Unwrap(Atom *atom, Domain *domain_, int dir_) :
+    domain(domain_), x(atom->x), image(atom->image), dir(dir_)
+{
+  bits = dir == 0 ? 0 : (dir == 1 ? IMGBITS : IMG2BITS);
+  prd = domain->prd[dir];
+  triclinic = domain->triclinic != 0;
+  wrapfix = !triclinic && domain->periodicity[dir];
+  wrap = 2.0 * IMGMAX * prd;
+}
+
+double EQUtil::Unwrap::unmap(int i) const
+{
+  double u[3];
+  domain->unmap(x[i], image[i], u);
+  return u[dir];
 }

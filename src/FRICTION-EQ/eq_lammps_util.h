@@ -1,7 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    FRICTION-EQ package for LAMMPS: helpers shared by the package's styles
    to feed the LAMMPS-free kernels (number parsing with LAMMPS' rules,
-   table files read once and broadcast).
+   table files read once and broadcast, unwrapped coordinates).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_EQ_LAMMPS_UTIL_H
@@ -11,10 +11,13 @@
 
 #include "lmptype.h"
 
+#include <cmath>
 #include <string>
 
 namespace LAMMPS_NS {
 class LAMMPS;
+class Atom;
+class Domain;
 
 namespace EQUtil {
   // Numbers of the package's commands.  A token is a number when
@@ -34,6 +37,38 @@ namespace EQUtil {
   // potential search path), reads it and broadcasts its contents or the
   // error, so all ranks agree (no rank waits for another that failed)
   feq::FileLoader file_loader(LAMMPS *lmp);
+
+  // Unwrapped coordinates along one direction: x + n L from the image
+  // flags (orthogonal boxes), domain->unmap() for triclinic ones.  Made
+  // where it is used (it holds the atom arrays of that moment).
+  class Unwrap {
+   public:
+    Unwrap(Atom *atom, Domain *domain, int dir);
+    double operator()(int i) const
+    {
+      if (triclinic) return unmap(i);
+      const int n = int((image[i] >> bits) & IMGMASK) - IMGMAX;
+      return x[i][dir] + n * prd;
+    }
+    // a difference of unwrapped coordinates (a stretch, a displacement):
+    // LAMMPS keeps the image count in IMGBITS bits, after IMGMAX periodic
+    // crossings it wraps and the unwrapped coordinate jumps by 2 IMGMAX
+    // box lengths; no such difference can be that large: undo the jump
+    double fix(double s) const
+    {
+      if (wrapfix && std::fabs(s) > 0.5 * wrap) s -= wrap * std::round(s / wrap);
+      return s;
+    }
+
+   private:
+    Domain *domain;
+    double **x;
+    const imageint *image;
+    int dir, bits;
+    double prd, wrap;
+    bool triclinic, wrapfix;
+    double unmap(int i) const;
+  };
 }    // namespace EQUtil
 
 }    // namespace LAMMPS_NS

@@ -7,7 +7,9 @@
    between the atom (top end, on the slider) and an anchor (bottom end, on
    the substrate) stored per atom.  A contact breaks when its force
    reaches k_i x_si, with the threshold x_si drawn from P_c; it re-forms
-   with a stretch drawn from R.  See doc/src/fix_eq_contacts.rst.
+   with a stretch drawn from R.  The break engine is lib/eq_contact; the
+   stretches are the coordinates of an elastic field (pair eq/elastic)
+   when there is one.  See doc/src/fix_eq_contacts.rst.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -19,13 +21,20 @@ FixStyle(eq/contacts,FixEQContacts);
 #ifndef LMP_FIX_EQ_CONTACTS_H
 #define LMP_FIX_EQ_CONTACTS_H
 
-#include "fix.h"
+#include "eq_field.h"
+#include "eq_fix_peratom.h"
 
-#include "eq_distribution.h"
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace feq {
+class ContactModel;
+}
 
 namespace LAMMPS_NS {
 
-class FixEQContacts : public Fix {
+class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQEventSource {
  public:
   FixEQContacts(class LAMMPS *, int, char **);
   ~FixEQContacts() override;
@@ -35,68 +44,45 @@ class FixEQContacts : public Fix {
   void setup_pre_force(int) override;
   void pre_force(int) override;
   void min_setup(int) override;
+  void min_pre_force(int) override;
   void post_force(int) override;
   void post_force_respa(int, int, int) override;
   void min_post_force(int) override;
+  void post_run() override;
   double compute_scalar() override;
   double compute_vector(int) override;
-
   void write_restart(FILE *) override;
   void restart(char *) override;
-
   double memory_usage() override;
-  void grow_arrays(int) override;
-  void copy_arrays(int, int, int) override;
-  void set_arrays(int) override;
-  int pack_exchange(int, double *) override;
-  int unpack_exchange(int, double *) override;
-  int pack_restart(int, double *) override;
-  void unpack_restart(int, int) override;
-  int size_restart(int) override;
-  int maxsize_restart() override;
-  void *extract(const char *, int &) override;
 
-  // columns of the per-atom state (also the per-atom output array);
-  // INTERACT is the interaction force h_i of pair eq/elastic (0 without)
-  enum { STRETCH, THRESHOLD, FORCE, NBREAK, STIFFNESS, ANCHOR, INTERACT, NCOL };
+  // EQCoordinateSource: the contacts' stretches
+  int source_dir() const override { return idir; }
+  int source_groupbit() const override { return groupbit; }
+  const char *source_name() const override { return name.c_str(); }
+  bool source_site_distance() const override { return false; }
 
-  // --- for pair eq/elastic and fix eq/quasistatic ---
-  // stretches of all local contacts from the current positions (no breaks)
-  void update_stretches();
-  // slider advance (along +dir) that brings the first contact to its
-  // threshold; global minimum over all ranks (infinite: no contact)
-  double next_event();
-  // relative tolerance of the breaking test (quasi-static driving)
-  void set_break_tolerance(double tol) { break_tol = tol; }
-  // all contacts were translated rigidly along dir since the last step:
-  // the interaction field is unchanged (fix eq/quasistatic)
-  void note_rigid_shift() { rigid_shift = 1; }
+  // EQEventSource (fix eq/quasistatic)
+  int event_dir() const override { return idir; }
+  int event_groupbit() const override { return groupbit; }
+  const char *event_name() const override { return name.c_str(); }
+  double next_event() override;
+  void set_event_tolerance(double tol) override { break_tol = tol; }
 
  private:
-  double kc;
+  std::unique_ptr<feq::ContactModel> model;
+  std::string name;    // "fix ID eq/contacts"
   bigint seed;
-  int idir;          // sliding direction 0,1,2
-  int exact;         // 1: threshold crossing resolved exactly within a step
-  int start_reform;  // 1: initial stretch drawn from R, else 0
+  int idir;            // sliding direction 0,1,2
   int ilevel_respa;
-  int reform_force;       // 1: a re-formed contact carries force k_i r (interaction included)
-  double break_tol;       // relative tolerance of the breaking test
-  class PairEQElastic *pair;    // the interaction, or nullptr
-  FILE *avfp;             // avalanche records (rank 0), or nullptr
-  int av_flag;            // avalanche records requested
-  int rounds_last;        // generations of the last step's avalanche
-  int rigid_shift;        // see note_rigid_shift()
-  int nmax_list;
-  int *blist;             // contacts breaking in an avalanche round
-  double *dsv;            // their stretch changes
+  double break_tol;    // relative tolerance of the breaking test
+  EQElasticField *field;    // the interaction, or nullptr
+  FILE *avfp;               // avalanche records (rank 0), or nullptr
+  int av_flag;              // avalanche records requested
+  int rounds_last;          // rounds of the last step's avalanche
 
-  feq::DistributionSpec threshold, reform, stiffness;
-  bool reform_point, stiffness_const;
-  double reform_value;
-  double reform_cdf_lo, reform_cdf_hi;    // R truncated to |r| < max threshold
-  double reform_top;                      // max threshold (effective for unbounded P_c)
-
-  double **state;    // per-atom state, NCOL columns (array_atom)
+  // scratch: coordinates handed to the field, local contacts, avalanche lists
+  std::vector<double> qbuf, dsv;
+  std::vector<int> members, blist;
 
   // local sums of the last force evaluation; reduced on demand
   double local_sum[7];
@@ -105,19 +91,16 @@ class FixEQContacts : public Fix {
   bigint reduced_step;
   int reduced_valid;
 
-  void apply(bool allow_breaks);
-  void init_contact(int i);
+  class Hooks;
+  friend class Hooks;
+
   void mark_departed();
-  double draw_reform(tagint tag, bigint event, uint32_t stream);
-  double resolve_breaks(int i, double s);
-  void reduce();
-  void interact_step(bool allow_breaks);
-  void cascade();
-  double break_once(int i, double e);
-  void apply_interacting();
+  void stretches();
+  void field_step(bool allow_breaks);
+  void apply(bool allow_breaks);
+  void apply_forces();
   void record_avalanche(bigint size, bigint trigger, int rounds);
-  inline double unwrap_fix(double s) const;
-  double unwrapped(int i) const;
+  void reduce();
 };
 
 }    // namespace LAMMPS_NS

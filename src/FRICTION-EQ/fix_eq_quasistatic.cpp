@@ -7,12 +7,12 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
-#include "fix_eq_contacts.h"
 #include "group.h"
 #include "modify.h"
 #include "update.h"
 #include "utils.h"
 
+#include "eq_field.h"
 #include "eq_lammps_util.h"
 
 #include <cmath>
@@ -68,7 +68,8 @@ FixEQQuasistatic::~FixEQQuasistatic()
 void FixEQQuasistatic::release()
 {
   const int ifix = modify->find_fix(contacts_id);
-  if (ifix >= 0 && contacts && modify->fix[ifix] == contacts) contacts->set_break_tolerance(0.0);
+  if (ifix >= 0 && contacts && dynamic_cast<EQEventSource *>(modify->fix[ifix]) == contacts)
+    contacts->set_event_tolerance(0.0);
 }
 
 int FixEQQuasistatic::setmask()
@@ -82,28 +83,28 @@ void FixEQQuasistatic::init()
   if (ifix < 0)
     error->all(FLERR, "Fix eq/quasistatic: fix ID {} does not exist; expected the ID of a fix "
                       "eq/contacts", contacts_id);
-  contacts = dynamic_cast<FixEQContacts *>(modify->fix[ifix]);
+  contacts = dynamic_cast<EQEventSource *>(modify->fix[ifix]);
   if (!contacts)
     error->all(FLERR, "Fix eq/quasistatic: fix {} is a fix {}, not eq/contacts", contacts_id,
                modify->fix[ifix]->style);
-  int dim;
-  idir = *(int *) contacts->extract("dir", dim);
-  contacts->set_break_tolerance(QS_TOLERANCE);
+  idir = contacts->event_dir();
+  contacts->set_event_tolerance(QS_TOLERANCE);
 
   // the advance to the next break assumes that every contact moves with
   // the slider (then the field only changes by breaks)
   const int *mask = atom->mask;
   bigint missing = 0;
+  const int cbit = contacts->event_groupbit();
   for (int i = 0; i < atom->nlocal; i++)
-    if ((mask[i] & contacts->groupbit) && !(mask[i] & groupbit)) ++missing;
+    if ((mask[i] & cbit) && !(mask[i] & groupbit)) ++missing;
   bigint all = 0;
   MPI_Allreduce(&missing, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   if (all > 0)
     error->all(FLERR, "Fix eq/quasistatic: group {} leaves {} contacts of fix {} (group {}) "
                       "behind; the advance to the next break assumes that every contact moves "
                       "with the slider: use a group that contains group {}",
-               group->names[igroup], all, contacts_id, group->names[contacts->igroup],
-               group->names[contacts->igroup]);
+               group->names[igroup], all, contacts_id, group->names[modify->fix[ifix]->igroup],
+               group->names[modify->fix[ifix]->igroup]);
   if (!utils::strmatch(update->integrate_style, "^verlet"))
     error->all(FLERR, "Fix eq/quasistatic requires run_style verlet");
 }
@@ -135,7 +136,6 @@ void FixEQQuasistatic::initial_integrate(int /*vflag*/)
     }
   xtotal += dx;
   dx_last = dx;
-  contacts->note_rigid_shift();
 }
 
 double FixEQQuasistatic::compute_scalar()

@@ -40,7 +40,7 @@ class FixEQQuasistatic : public Fix {
 
  private:
   std::string contacts_id;
-  class FixEQContacts *contacts;
+  class EQEventSource *contacts;
   double dxmax;      // largest advance per step (0: none)
   double xtotal;     // slider displacement since the fix was defined
   double dx_last;    // advance of the last step

@@ -6,7 +6,9 @@
    interfaces", Sec. V B, Eq. crack.eqi00), with optional driving springs
    to a moving stage.  The shapes live in the LAMMPS-free lib/eq_substrate;
    this fix adapts them to LAMMPS atoms, forces, output, exchange and
-   restart (per-atom state as in fix spring/self).
+   restart (per-atom state as in fix spring/self).  With pair eq/elastic
+   the blocks' displacements are the coordinates of its elastic field
+   (eq_field.h): this fix hands them over before every force evaluation.
 ------------------------------------------------------------------------- */
 
 #include "fix_eq_substrate.h"
@@ -16,7 +18,8 @@
 #include "domain.h"
 #include "error.h"
 #include "group.h"
-#include "memory.h"
+#include "force.h"
+#include "pair.h"
 #include "modify.h"
 #include "respa.h"
 #include "update.h"
@@ -27,6 +30,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -41,11 +45,12 @@ enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE
 /* ---------------------------------------------------------------------- */
 
 FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), idir(0), ilevel_respa(0), nlevels_respa(0), rev_break(0), exact(1),
-    window(0.5), drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0), dseed(0), njump(0),
-    jump_step(-1), jump_tag(0), jump_size(0.0), state(nullptr), neval(0), reduced_eval(-1),
-    chained(0)
+    FixEQPerAtom(lmp, narg, arg), idir(0), ilevel_respa(0), nlevels_respa(0), level_field(-1),
+    rev_break(0), exact(1), window(0.5), drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0),
+    dseed(0), njump(0), jump_step(-1), jump_tag(0), jump_size(0.0), field(nullptr), neval(0),
+    reduced_eval(-1), chained(0)
 {
+  name = fmt::format("fix {} eq/substrate", id);
   for (double &v : global_sum) v = 0.0;
   if (narg < 5)
     error->all(FLERR, "Illegal fix eq/substrate command: expected 'fix ID group eq/substrate kc "
@@ -180,8 +185,6 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
                    disorder.dist ? "; disorder " + disorder.text : std::string());
 
   restart_global = 1;
-  restart_peratom = 1;
-  create_attribute = 1;
   scalar_flag = 1;
   vector_flag = 1;
   size_vector = NVEC;
@@ -189,31 +192,19 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
   extscalar = 1;
   extvector = -1;
   extlist = new int[NVEC]{0, 0, 0, 0, 0, 1, 1, 1, 1, 1};
-  peratom_flag = 1;
-  size_peratom_cols = NCOL;
-  peratom_freq = 1;
   energy_global_flag = 1;
   respa_level_support = 1;
-  maxexchange = NCOL;
-
-  grow_arrays(atom->nmax);
-  atom->add_callback(Atom::GROW);
-  atom->add_callback(Atom::RESTART);
+  peratom_setup(NCOL, NCOL);
 
   const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++) {
-    set_arrays(i);
+  for (int i = 0; i < nlocal; i++)
     if (atom->mask[i] & groupbit) init_block(i);
-  }
 }
 
 /* ---------------------------------------------------------------------- */
 
 FixEQSubstrate::~FixEQSubstrate()
 {
-  atom->delete_callback(id, Atom::GROW);
-  atom->delete_callback(id, Atom::RESTART);
-  memory->destroy(state);
   delete[] extlist;
 }
 
@@ -222,9 +213,13 @@ int FixEQSubstrate::setmask()
   int mask = 0;
   mask |= POST_INTEGRATE;
   mask |= POST_INTEGRATE_RESPA;
+  mask |= PRE_FORCE;
+  mask |= PRE_FORCE_RESPA;
+  mask |= MIN_PRE_FORCE;
   mask |= POST_FORCE;
   mask |= POST_FORCE_RESPA;
   mask |= MIN_POST_FORCE;
+  mask |= POST_RUN;
   return mask;
 }
 
@@ -235,18 +230,80 @@ void FixEQSubstrate::init()
     ilevel_respa = nlevels_respa - 1;
     if (respa_level >= 0) ilevel_respa = MIN(respa_level, ilevel_respa);
   }
-  // the force window of the integrator (crossing exact): first-order
-  // overdamped fix brownian* applies F(x_n) over [t_n, t_n+1]; the
-  // velocity-Verlet family over [t_n+1/2, t_n+3/2]
-  int brownian = 0;
-  for (int i = 0; i < modify->nfix; i++)
-    if (utils::strmatch(modify->fix[i]->style, "^brownian")) brownian = 1;
-  const double w = brownian ? 1.0 : 0.5;
+  // the force window of the integrator (crossing exact), told by what the
+  // time-integrating fixes do: one that only updates the positions from
+  // the current forces (initial_integrate alone: first-order overdamped,
+  // e.g. fix brownian) applies F(x_n) over [t_n, t_n+1]; the
+  // velocity-Verlet family (initial and final integrate) over
+  // [t_n+1/2, t_n+3/2]
+  int overdamped = 0, verlet = 0;
+  for (int i = 0; i < modify->nfix; i++) {
+    if (!modify->fix[i]->time_integrate) continue;
+    if (modify->fmask[i] & FINAL_INTEGRATE) verlet = 1;
+    else overdamped = 1;
+  }
+  if (overdamped && verlet && exact && comm->me == 0)
+    error->warning(FLERR, "Fix eq/substrate: both first-order (initial_integrate only) and "
+                          "velocity-Verlet time integrators are defined; crossings are corrected "
+                          "for the first-order one");
+  const double w = overdamped ? 1.0 : 0.5;
   if (exact && w != window && comm->me == 0)
     utils::logmesg(lmp, "fix eq/substrate: crossings corrected for a force window of {} "
                         "({} integrator)\n", w == 1.0 ? "[t_n, t_n+1]" : "[t_n+1/2, t_n+3/2]",
-                   brownian ? "overdamped fix brownian" : "velocity-Verlet");
+                   overdamped ? "first-order overdamped" : "velocity-Verlet");
   window = w;
+
+  // the elastic field that couples the blocks (pair eq/elastic), and the
+  // r-RESPA level its forces are computed at
+  field = dynamic_cast<EQElasticField *>(force->pair);
+  if (field && field->field_source() != this) field = nullptr;
+  level_field = -1;
+  if (field && utils::strmatch(update->integrate_style, "^respa")) {
+    level_field = ((Respa *) update->integrate)->level_pair;
+    if (level_field < 0)
+      error->all(FLERR, "Fix eq/substrate: pair eq/elastic must be computed at one r-RESPA level "
+                        "(run_style respa ... pair N); inner/middle/outer levels are not allowed");
+  }
+}
+
+/* ----------------------------------------------------------------------
+   the blocks' displacements to the elastic field, before every force
+   evaluation of the pair style
+------------------------------------------------------------------------- */
+
+void FixEQSubstrate::push_field()
+{
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  if ((int) qbuf.size() < atom->nmax) qbuf.resize(atom->nmax);
+  for (int i = 0; i < nlocal; i++)
+    qbuf[i] = (mask[i] & groupbit) ? displacement(i) : std::numeric_limits<double>::quiet_NaN();
+  field->field_update(qbuf.data(), false);
+}
+
+void FixEQSubstrate::setup_pre_force(int /*vflag*/)
+{
+  if (field) push_field();
+}
+
+void FixEQSubstrate::pre_force(int /*vflag*/)
+{
+  if (field) push_field();
+}
+
+void FixEQSubstrate::min_pre_force(int /*vflag*/)
+{
+  if (field) push_field();
+}
+
+void FixEQSubstrate::setup_pre_force_respa(int /*vflag*/, int ilevel)
+{
+  if (field && ilevel == level_field) push_field();
+}
+
+void FixEQSubstrate::pre_force_respa(int /*vflag*/, int ilevel, int /*iloop*/)
+{
+  if (field && ilevel == level_field) push_field();
 }
 
 void FixEQSubstrate::setup(int vflag)
@@ -299,24 +356,6 @@ void FixEQSubstrate::post_integrate_respa(int ilevel, int /*iloop*/)
     stage += vstage * ((Respa *) update->integrate)->step[ilevel];
 }
 
-/* ----------------------------------------------------------------------
-   unwrapped coordinate of atom i along dir
-------------------------------------------------------------------------- */
-
-inline double FixEQSubstrate::unwrapped(int i) const
-{
-  const imageint img = atom->image[i];
-  if (domain->triclinic) {
-    double u[3];
-    domain->unmap(atom->x[i], img, u);
-    return u[idir];
-  }
-  int n;
-  if (idir == 0) n = (img & IMGMASK) - IMGMAX;
-  else if (idir == 1) n = (img >> IMGBITS & IMGMASK) - IMGMAX;
-  else n = (img >> IMG2BITS) - IMGMAX;
-  return atom->x[i][idir] + n * domain->prd[idir];
-}
 
 /* ----------------------------------------------------------------------
    a block first seen in the group: its site is where it is now; its
@@ -326,7 +365,7 @@ inline double FixEQSubstrate::unwrapped(int i) const
 void FixEQSubstrate::init_block(int i)
 {
   double *s = state[i];
-  s[SITE] = unwrapped(i);
+  s[SITE] = EQUtil::Unwrap(atom, domain, idir)(i);
   s[DISP] = s[FSUB] = s[FDRIVE] = s[INTERACT] = 0.0;
   s[KC] = kc;
   s[ANCHOR] = 0.0;
@@ -343,12 +382,8 @@ void FixEQSubstrate::init_block(int i)
 double FixEQSubstrate::displacement(int i)
 {
   if (state[i][DISORDER] == 0.0) init_block(i);
-  double u = unwrapped(i) - state[i][SITE];
-  if (!domain->triclinic && domain->periodicity[idir]) {
-    const double wrap = 2.0 * IMGMAX * domain->prd[idir];
-    if (std::fabs(u) > 0.5 * wrap) u -= wrap * std::round(u / wrap);
-  }
-  return u;
+  const EQUtil::Unwrap unwrap(atom, domain, idir);
+  return unwrap.fix(unwrap(i) - state[i][SITE]);
 }
 
 /* ----------------------------------------------------------------------
@@ -369,17 +404,12 @@ double FixEQSubstrate::displacement(int i)
 
 void FixEQSubstrate::apply()
 {
-  double *const *const x = atom->x;
   double *const *const f = atom->f;
   const int *const mask = atom->mask;
-  const imageint *const image = atom->image;
   const int nlocal = atom->nlocal;
   const int d = idir;
-  const int bits = (d == 0) ? 0 : (d == 1 ? IMGBITS : IMG2BITS);
-  const double prd = domain->prd[d];
-  const bool triclinic = domain->triclinic;
-  const bool wrapfix = !triclinic && domain->periodicity[d];
-  const double wrap = 2.0 * IMGMAX * prd;
+  const EQUtil::Unwrap unwrap(atom, domain, d);
+  const double *const hfield = field ? field->field_h() : nullptr;
   const double Xs = stage;
   const double K = kdrive;
   const double uc = shape.period();
@@ -397,15 +427,7 @@ void FixEQSubstrate::apply()
     if (!(mask[i] & groupbit)) continue;
     double *const st = state[i];
     if (st[DISORDER] == 0.0) init_block(i);
-    double xu;
-    if (!triclinic) {
-      const int n = int((image[i] >> bits) & IMGMASK) - IMGMAX;
-      xu = x[i][d] + n * prd;
-    } else {
-      xu = unwrapped(i);
-    }
-    double u = xu - st[SITE];
-    if (wrapfix && std::fabs(u) > 0.5 * wrap) u -= wrap * std::round(u / wrap);
+    const double u = unwrap.fix(unwrap(i) - st[SITE]);
     if (!std::isfinite(u))
       error->one(FLERR,
                  "Fix eq/substrate: displacement of block {} is {} (numerical instability: "
@@ -457,6 +479,7 @@ void FixEQSubstrate::apply()
     st[DISP] = u;
     st[FSUB] = fs;
     st[FDRIVE] = fd;
+    st[INTERACT] = hfield ? hfield[i] : 0.0;
   }
   ++neval;
   chained = update->whichflag == 1;
@@ -470,6 +493,7 @@ void FixEQSubstrate::apply()
 
 void FixEQSubstrate::post_run()
 {
+  if (field) field->field_report();
   bigint total = 0;
   MPI_Allreduce(&njump, &total, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   if (total > 0) {
@@ -643,87 +667,4 @@ int FixEQSubstrate::modify_param(int narg, char **arg)
   error->all(FLERR, "Fix_modify {}: unknown keyword '{}'; allowed: kc, velocity (and LAMMPS' "
                     "energy, virial, respa)", id, arg[0]);
   return 0;
-}
-
-/* ---------------------------------------------------------------------- */
-
-double FixEQSubstrate::memory_usage()
-{
-  return (double) atom->nmax * NCOL * sizeof(double);
-}
-
-void FixEQSubstrate::grow_arrays(int nmax)
-{
-  memory->grow(state, nmax, NCOL, "eq/substrate:state");
-  array_atom = state;
-}
-
-void FixEQSubstrate::copy_arrays(int i, int j, int /*delflag*/)
-{
-  memcpy(state[j], state[i], NCOL * sizeof(double));
-}
-
-// a new atom is no block until it is first seen in the group
-void FixEQSubstrate::set_arrays(int i)
-{
-  for (int c = 0; c < NCOL; c++) state[i][c] = 0.0;
-}
-
-int FixEQSubstrate::pack_exchange(int i, double *buf)
-{
-  for (int c = 0; c < NCOL; c++) buf[c] = state[i][c];
-  return NCOL;
-}
-
-int FixEQSubstrate::unpack_exchange(int nlocal, double *buf)
-{
-  for (int c = 0; c < NCOL; c++) state[nlocal][c] = buf[c];
-  return NCOL;
-}
-
-int FixEQSubstrate::pack_restart(int i, double *buf)
-{
-  buf[0] = NCOL + 1;
-  for (int c = 0; c < NCOL; c++) buf[c + 1] = state[i][c];
-  return NCOL + 1;
-}
-
-void FixEQSubstrate::unpack_restart(int nlocal, int nth)
-{
-  double **extra = atom->extra;
-  int m = 0;
-  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  m++;
-  for (int c = 0; c < NCOL; c++) state[nlocal][c] = extra[nlocal][m++];
-}
-
-int FixEQSubstrate::size_restart(int /*nlocal*/)
-{
-  return NCOL + 1;
-}
-
-int FixEQSubstrate::maxsize_restart()
-{
-  return NCOL + 1;
-}
-
-/* ----------------------------------------------------------------------
-   access for pair eq/elastic
-------------------------------------------------------------------------- */
-
-void *FixEQSubstrate::extract(const char *name, int &dim)
-{
-  if (strcmp(name, "state") == 0) {
-    dim = 2;
-    return (void *) state;
-  }
-  if (strcmp(name, "dir") == 0) {
-    dim = 0;
-    return (void *) &idir;
-  }
-  if (strcmp(name, "kc") == 0) {
-    dim = 0;
-    return (void *) &kc;
-  }
-  return nullptr;
 }

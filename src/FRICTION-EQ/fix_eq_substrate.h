@@ -20,14 +20,18 @@ FixStyle(eq/substrate,FixEQSubstrate);
 #ifndef LMP_FIX_EQ_SUBSTRATE_H
 #define LMP_FIX_EQ_SUBSTRATE_H
 
-#include "fix.h"
+#include "eq_field.h"
+#include "eq_fix_peratom.h"
 
 #include "eq_distribution.h"
 #include "eq_substrate.h"
 
+#include <string>
+#include <vector>
+
 namespace LAMMPS_NS {
 
-class FixEQSubstrate : public Fix {
+class FixEQSubstrate : public FixEQPerAtom, public EQCoordinateSource {
  public:
   FixEQSubstrate(class LAMMPS *, int, char **);
   ~FixEQSubstrate() override;
@@ -35,6 +39,11 @@ class FixEQSubstrate : public Fix {
   void init() override;
   void setup(int) override;
   void min_setup(int) override;
+  void setup_pre_force(int) override;
+  void pre_force(int) override;
+  void min_pre_force(int) override;
+  void setup_pre_force_respa(int, int) override;
+  void pre_force_respa(int, int, int) override;
   void post_integrate() override;
   void post_integrate_respa(int, int) override;
   void post_force(int) override;
@@ -48,17 +57,12 @@ class FixEQSubstrate : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  double memory_usage() override;
-  void grow_arrays(int) override;
-  void copy_arrays(int, int, int) override;
-  void set_arrays(int) override;
-  int pack_exchange(int, double *) override;
-  int unpack_exchange(int, double *) override;
-  int pack_restart(int, double *) override;
-  void unpack_restart(int, int) override;
-  int size_restart(int) override;
-  int maxsize_restart() override;
-  void *extract(const char *, int &) override;
+  // EQCoordinateSource: the blocks' displacements, coupled at the
+  // distance of their sites
+  int source_dir() const override { return idir; }
+  int source_groupbit() const override { return groupbit; }
+  const char *source_name() const override { return name.c_str(); }
+  bool source_site_distance() const override { return true; }
 
   // columns of the per-atom state (also the per-atom output array):
   // displacement u, substrate force -k_c d phi, driving-spring force
@@ -68,16 +72,13 @@ class FixEQSubstrate : public Fix {
   // dir where u = 0), field h of pair eq/elastic (force -h; 0 without)
   enum { DISP, FSUB, FDRIVE, KC, DISORDER, ANCHOR, SITE, INTERACT, NCOL };
 
-  // displacement of local atom i in the group from its current position
-  // (for pair eq/elastic, which couples the blocks; the state keeps the
-  // displacement of the last force evaluation of this fix)
-  double displacement(int i);
-
  private:
+  std::string name;     // "fix ID eq/substrate"
   double kc;            // default k_c of a block
   feq::SubstrateShape shape;
   int idir;
   int ilevel_respa, nlevels_respa;
+  int level_field;      // r-RESPA level of the pair style's forces (-1: verlet)
   // backward motion: periodic prolongation of F_s, or the block's
   // contacts break at u - a = -u_c as they do at +u_c (reverse break)
   int rev_break;
@@ -99,7 +100,10 @@ class FixEQSubstrate : public Fix {
   tagint jump_tag;
   double jump_size;
 
-  double **state;
+  // the elastic field that couples the blocks (pair eq/elastic), or
+  // nullptr; the coordinates handed to it
+  EQElasticField *field;
+  std::vector<double> qbuf;
 
   // sums over the blocks (velocity, displacement, forces, energies, count)
   enum { S_VEL, S_DISP, S_FSUB, S_FDRIVE, S_ESUB, S_EDRIVE, S_COUNT, NSUM };
@@ -112,8 +116,10 @@ class FixEQSubstrate : public Fix {
   void reduce();
 
   void init_block(int i);
+  // displacement u_i = x_i - site_i of local atom i in the group
+  double displacement(int i);
+  void push_field();
   void apply();
-  inline double unwrapped(int i) const;
 };
 
 }    // namespace LAMMPS_NS

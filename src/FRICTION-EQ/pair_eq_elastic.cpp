@@ -1,16 +1,31 @@
 /* ----------------------------------------------------------------------
    FRICTION-EQ package for LAMMPS: pair_style eq/elastic
 
-   Elastic interaction between contacts (Braun, Peyrard, Stryzheus,
-   Tosatti, Secs. III-IV).  The contacts and their stretches belong to fix
-   eq/contacts; this style evaluates the interaction field
-   h_i = sum_j k_ij (x_i - x_j), its forces -h_i along the sliding
-   direction, energy and virial.  With fix eq/substrate instead, x_i are
-   the displacements of FK-ME blocks (Sec. V B) and the style is their
-   scalar elastic coupling (e.g. a 2d interface of blocks).  The kernel k(r) is a LAMMPS-free unit
-   (lib/eq_kernel.h).  A full neighbor list gives every contact all its
-   partners, so the field of a contact is complete on its owner rank and
-   changes after breaks are scattered with one reverse communication.
+   Elastic interaction between the atoms of one coordinate source (Braun,
+   Peyrard, Stryzheus, Tosatti, Secs. III-V): contacts of fix eq/contacts
+   (q = stretch) or FK-ME blocks of fix eq/substrate (q = displacement).
+   This style is the source's elastic field (eq_field.h): it owns
+   h_i = sum_j k_ij (q_i - q_j) and K_i = sum_j k_ij and applies -h_i
+   along the source's direction.  The kernel k(r) is a LAMMPS-free unit
+   (lib/eq_kernel.h).
+
+   Incremental field.  The source hands over its coordinates before every
+   force evaluation (field_update) and the changes of breaks at fixed
+   positions (field_change).  Between two neighbor list builds:
+   - if every coupled atom this rank holds (local and ghost) moved by the
+     same distance along dir since the last update (to the rounding of the
+     positions), h is unchanged: a rigid slider costs O(N) and no pair
+     work, whatever the cutoff;
+   - a break changes h of its partners only: O(breaks x neighbours), one
+     reverse communication per avalanche round;
+   - otherwise (blocks moving one by one, a deforming slider) h is
+     recomputed over the pairs of the list, cached with their k_ij at the
+     list build (blocks: the distance of their sites is fixed).
+   After every list build, and every `check` updates as a drift check
+   whose result is reported at the end of each run, h is recomputed from
+   scratch.  A full neighbor list gives every atom all its partners, so
+   h is complete on the owner and a break's changes reach the partners'
+   owners by one reverse communication.
 ------------------------------------------------------------------------- */
 
 #include "pair_eq_elastic.h"
@@ -18,8 +33,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
-#include "fix_eq_contacts.h"
-#include "fix_eq_substrate.h"
+#include "fix.h"
 #include "force.h"
 #include "memory.h"
 #include "modify.h"
@@ -39,11 +53,15 @@
 using namespace LAMMPS_NS;
 
 namespace {
-constexpr double NOT_A_CONTACT = std::numeric_limits<double>::quiet_NaN();
+constexpr double NOT_COUPLED = std::numeric_limits<double>::quiet_NaN();
 // distances within this relative margin of the cutoff count as inside, so
 // a lattice shell at exactly rcut = lambda_c is included
 constexpr double CUT_MARGIN = 1.0e-12;
-enum { COMM_STRETCH = 1 };
+// default number of field updates between two drift checks
+constexpr int CHECK_DEFAULT = 1000;
+// atoms count as moved rigidly when their displacements since the last
+// update differ by less than this many units of rounding of the positions
+constexpr double UNIFORM_ULPS = 8.0;
 const char *USAGE = "expected 'pair_coeff I J ftilde lambda_c [rcut]' or "
                     "'pair_coeff I J table FILE KEYWORD [rcut]'";
 }    // namespace
@@ -51,9 +69,11 @@ const char *USAGE = "expected 'pair_coeff I J ftilde lambda_c [rcut]' or "
 /* ---------------------------------------------------------------------- */
 
 PairEQElastic::PairEQElastic(LAMMPS *lmp) :
-    Pair(lmp), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr), lambda(nullptr), kidx(nullptr), mixed(nullptr),
-    anisotropic(0), fix(nullptr), sub(nullptr), hcol(0), idir(0), fresh(0), comm_mode(0), nmax(0), sx(nullptr),
-    dh(nullptr), ksum(nullptr), ghosts_current(0), bcache(-1)
+    Pair(lmp), check_every(CHECK_DEFAULT), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr),
+    lambda(nullptr), kidx(nullptr), mixed(nullptr), anisotropic(0), source(nullptr), idir(0),
+    sgroupbit(0), site_distance(false), nmax(0), q(nullptr), xq(nullptr), w(nullptr),
+    h(nullptr), ksum(nullptr), dh(nullptr), mom(nullptr), valid(0), ghosts_current(0), ready(0),
+    vir_valid(0), comm_mode(0)
 {
   single_enable = 1;
   single_extra = 2;
@@ -67,14 +87,21 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
   comm_forward = 1;
   comm_reverse = 1;
   cut_global = 0.0;
+  wvir[0] = wvir[1] = wvir[2] = 0.0;
+  n_update = n_uniform = n_rebuild = n_nonuniform = n_change = n_check = 0;
+  drift_max = hscale_max = 0.0;
 }
 
 PairEQElastic::~PairEQElastic()
 {
   delete[] svector;
-  memory->destroy(sx);
-  memory->destroy(dh);
+  memory->destroy(q);
+  memory->destroy(xq);
+  memory->destroy(w);
+  memory->destroy(h);
   memory->destroy(ksum);
+  memory->destroy(dh);
+  memory->sfree(mom);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -110,30 +137,50 @@ void PairEQElastic::allocate()
     }
 }
 
+// per-atom arrays; they grow only when atoms arrive (at a list build)
 void PairEQElastic::grow()
 {
   if (atom->nmax <= nmax) return;
   nmax = atom->nmax;
-  memory->destroy(sx);
-  memory->destroy(dh);
+  memory->destroy(q);
+  memory->destroy(xq);
+  memory->destroy(w);
+  memory->destroy(h);
   memory->destroy(ksum);
-  memory->create(sx, nmax, "pair:sx");
-  memory->create(dh, nmax, "pair:dh");
+  memory->destroy(dh);
+  memory->sfree(mom);
+  memory->create(q, nmax, "pair:q");
+  memory->create(xq, nmax, "pair:xq");
+  memory->create(w, nmax, "pair:w");
+  memory->create(h, nmax, "pair:h");
   memory->create(ksum, nmax, "pair:ksum");
-  ghosts_current = 0;
+  memory->create(dh, nmax, "pair:dh");
+  mom = (double(*)[3]) memory->smalloc(sizeof(double[3]) * nmax, "pair:mom");
+  valid = 0;
 }
 
 /* ----------------------------------------------------------------------
-   pair_style eq/elastic rcut
+   pair_style eq/elastic rcut [check N]
 ------------------------------------------------------------------------- */
 
 void PairEQElastic::settings(int narg, char **arg)
 {
-  if (narg != 1)
-    error->all(FLERR, "Illegal pair_style eq/elastic command: expected 'pair_style eq/elastic rcut'");
+  if (narg != 1 && narg != 3)
+    error->all(FLERR, "Illegal pair_style eq/elastic command: expected 'pair_style eq/elastic rcut "
+                      "[check N]'");
   cut_global = EQUtil::numeric(lmp, "Pair style eq/elastic: rcut", arg[0]);
   if (!(cut_global > 0.0) || !std::isfinite(cut_global))
     error->all(FLERR, "Pair style eq/elastic: rcut must be a finite number > 0 (got {})", arg[0]);
+  check_every = CHECK_DEFAULT;
+  if (narg == 3) {
+    if (strcmp(arg[1], "check") != 0)
+      error->all(FLERR, "Pair style eq/elastic: unknown keyword '{}'; allowed: check", arg[1]);
+    const bigint n = EQUtil::bnumeric(lmp, "Pair style eq/elastic: check", arg[2]);
+    if (n < 0 || n > MAXSMALLINT)
+      error->all(FLERR, "Pair style eq/elastic: check must be an integer >= 0 (0: never; got {})",
+                 arg[2]);
+    check_every = (int) n;
+  }
 
   // reset explicit cutoffs that were set from the previous global cutoff
   if (allocated) {
@@ -215,54 +262,47 @@ void PairEQElastic::coeff(int narg, char **arg)
   if (count == 0) error->all(FLERR, "Incorrect args for pair eq/elastic coefficients: no type pair in {} {}", arg[0], arg[1]);
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   the coordinate source: exactly one fix of the package that provides
+   coordinates (fix eq/contacts, fix eq/substrate)
+------------------------------------------------------------------------- */
 
 void PairEQElastic::init_style()
 {
   if (!atom->tag_enable) error->all(FLERR, "Pair style eq/elastic requires atom IDs");
+  if (force->pair != this)
+    error->all(FLERR, "Pair style eq/elastic cannot be a sub-style of pair hybrid: it is the "
+                      "elastic field of its fix and must be the only pair style");
 
-  // the cached block pairs are keyed by neighbor->ncalls, which restarts at
-  // 0 with every run or minimize, whose setup may also sort or migrate the
-  // atoms: drop the cache here
-  bcache = -1;
-
-  // exactly one fix eq/contacts (contacts and their stretches) or one fix
-  // eq/substrate (FK-ME blocks and their displacements)
-  fix = nullptr;
-  sub = nullptr;
-  int ncontacts = 0, nsubstrate = 0;
+  source = nullptr;
+  int nsources = 0;
+  std::string names;
   for (int i = 0; i < modify->nfix; i++) {
-    if (utils::strmatch(modify->fix[i]->style, "^eq/contacts$")) {
-      fix = dynamic_cast<FixEQContacts *>(modify->fix[i]);
-      ++ncontacts;
-    }
-    if (utils::strmatch(modify->fix[i]->style, "^eq/substrate$")) {
-      sub = dynamic_cast<FixEQSubstrate *>(modify->fix[i]);
-      ++nsubstrate;
-    }
+    auto *s = dynamic_cast<EQCoordinateSource *>(modify->fix[i]);
+    if (!s) continue;
+    if (!source) source = s;
+    names += (nsources++ ? ", " : "") + std::string(s->source_name());
   }
-  if (ncontacts + nsubstrate == 0)
+  if (nsources == 0)
     error->all(FLERR, "Pair style eq/elastic needs a fix eq/contacts (the contacts and their "
                       "stretches) or a fix eq/substrate (blocks and their displacements); define "
                       "it before the run");
-  if (ncontacts > 1 || nsubstrate > 1 || (ncontacts && nsubstrate))
-    error->all(FLERR, "Pair style eq/elastic found {} fixes eq/contacts and {} fixes eq/substrate; "
-               "allowed: exactly one of either", ncontacts, nsubstrate);
-  int dim;
-  if (fix) {
-    idir = *(int *) fix->extract("dir", dim);
-    hcol = FixEQContacts::INTERACT;
-  } else {
-    idir = *(int *) sub->extract("dir", dim);
-    hcol = FixEQSubstrate::INTERACT;
-  }
+  if (nsources > 1)
+    error->all(FLERR, "Pair style eq/elastic found {} fixes with coordinates ({}); allowed: "
+                      "exactly one fix eq/contacts or eq/substrate", nsources, names);
+  idir = source->source_dir();
+  sgroupbit = source->source_groupbit();
+  site_distance = source->source_site_distance();
 
   anisotropic = 0;
   for (const auto &k : kernels)
     if (k.anisotropic()) anisotropic = 1;
 
   EQCompat::request_full_list(neighbor, this, instance_me);
-  fresh = 0;
+  // every run or minimize sets up afresh (its setup may sort or migrate
+  // the atoms): the field is recomputed at its first update
+  valid = 0;
+  ready = 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -311,7 +351,6 @@ double PairEQElastic::init_one(int i, int j)
 /* ----------------------------------------------------------------------
    k_ij of a pair at squared distance rsq, del = x_i - x_j
 ------------------------------------------------------------------------- */
-
 inline double PairEQElastic::kval(int itype, int jtype, double rsq, const double *del) const
 {
   const feq::Kernel &k = kernels[kidx[itype][jtype]];
@@ -322,316 +361,390 @@ inline double PairEQElastic::kval(int itype, int jtype, double rsq, const double
 }
 
 /* ----------------------------------------------------------------------
-   per-atom state of the fix that holds the coupled coordinates
+   owners' coordinates to their ghosts; w = x - q along dir for all atoms
 ------------------------------------------------------------------------- */
 
-double **PairEQElastic::state()
+void PairEQElastic::sync_ghosts()
 {
-  int dim;
-  return fix ? (double **) fix->extract("state", dim) : (double **) sub->extract("state", dim);
-}
-
-/* ----------------------------------------------------------------------
-   stretches of local contacts from the fix, then to the ghosts
-------------------------------------------------------------------------- */
-
-void PairEQElastic::load_stretches()
-{
-  double **st = state();
-  const int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  if (fix) {
-    const int groupbit = fix->groupbit;
-    for (int i = 0; i < nlocal; i++)
-      sx[i] = ((mask[i] & groupbit) && st[i][FixEQContacts::THRESHOLD] > 0.0)
-          ? st[i][FixEQContacts::STRETCH]
-          : NOT_A_CONTACT;
-  } else {
-    // displacements from the current positions (the fix's state holds
-    // those of its last force evaluation, the step before)
-    const int groupbit = sub->groupbit;
-    for (int i = 0; i < nlocal; i++)
-      sx[i] = (mask[i] & groupbit) ? sub->displacement(i) : NOT_A_CONTACT;
-  }
-  comm_mode = COMM_STRETCH;
+  comm_mode = 1;
   EQCompat::forward_comm(comm, this);
+  double **x = atom->x;
+  const int nall = atom->nlocal + atom->nghost;
+  for (int i = 0; i < nall; i++) w[i] = x[i][idir] - q[i];
   ghosts_current = 1;
 }
 
 /* ----------------------------------------------------------------------
-   field h_i and coupling K_i = sum_j k_ij of all local contacts
+   the coupled pairs of the neighbor list with their k_ij (at the atoms'
+   distance; blocks: at their sites' distance), h, K, the moments of the
+   virial and this rank's share of it.  fresh_ghosts: the ghosts' q come
+   from their owners (forward communication), else from x - w.
 ------------------------------------------------------------------------- */
 
-void PairEQElastic::field()
-{
-  grow();
-  load_stretches();
-  if (sub) {
-    field_blocks();
-    return;
-  }
-  double **st = state();
-  double **x = atom->x;
-  const int *type = atom->type;
-  const double *special_lj = force->special_lj;
-  const int inum = list->inum;
-  const int *ilist = list->ilist;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
-
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const double si = sx[i];
-    if (std::isnan(si)) {
-      ksum[i] = 0.0;
-      st[i][hcol] = 0.0;
-      continue;
-    }
-    const int itype = type[i];
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    double hi = 0.0, ki = 0.0;
-    for (int jj = 0; jj < jnum; jj++) {
-      int j = jlist[jj];
-      const double factor = special_lj[sbmask(j)];
-      j &= NEIGHMASK;
-      const double sj = sx[j];
-      if (std::isnan(sj)) continue;
-      const int jtype = type[j];
-      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-      if (rsq > cutsq_in[itype][jtype]) continue;
-      const double k = factor * kval(itype, jtype, rsq, del);
-      ki += k;
-      hi += k * (si - sj);
-    }
-    ksum[i] = ki;
-    st[i][hcol] = hi;
-  }
-}
-
-/* ----------------------------------------------------------------------
-   blocks of fix eq/substrate: the pairs of the neighbor list whose sites
-   are within the cutoff, with k_ij at the sites' distance
-   (x_i - x_j - (u_i - u_j) along dir); valid until the next list build
-------------------------------------------------------------------------- */
-
-void PairEQElastic::block_pairs()
+void PairEQElastic::rebuild(bool fresh_ghosts)
 {
   double **x = atom->x;
   const int *type = atom->type;
   const double *special_lj = force->special_lj;
-  const int inum = list->inum;
-  const int *ilist = list->ilist;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
   const int d = idir;
-  bfirst.assign(inum + 1, 0);
-  bj.clear();
-  bk.clear();
-  for (int ii = 0; ii < inum; ii++) {
-    bfirst[ii] = (int) bj.size();
-    const int i = ilist[ii];
-    const double si = sx[i];
-    if (std::isnan(si)) continue;
-    const int itype = type[i];
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    for (int jj = 0; jj < jnum; jj++) {
-      int j = jlist[jj];
-      const double factor = special_lj[sbmask(j)];
-      j &= NEIGHMASK;
-      const double sj = sx[j];
-      if (std::isnan(sj)) continue;
-      const int jtype = type[j];
-      double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-      del[d] -= si - sj;
-      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-      if (rsq > cutsq_in[itype][jtype]) continue;
-      bj.push_back(j);
-      bk.push_back(factor * kval(itype, jtype, rsq, del));
-    }
-  }
-  bfirst[inum] = (int) bj.size();
-  bcache = neighbor->ncalls;
-}
+  if (fresh_ghosts) sync_ghosts();
+  else
+    for (int i = nlocal; i < nall; i++) q[i] = x[i][d] - w[i];
+  for (int i = 0; i < nall; i++) xq[i] = x[i][d];
 
-/* ----------------------------------------------------------------------
-   field h_i = sum_j k_ij (u_i - u_j) of the blocks.  A coupled pair is in
-   the neighbor list of the current positions as long as the blocks'
-   displacements differ by less than the skin: checked every step with a
-   margin of a factor 2 for the motion until the next list build
-------------------------------------------------------------------------- */
-
-void PairEQElastic::field_blocks()
-{
-  if (bcache != neighbor->ncalls || (int) bfirst.size() != list->inum + 1) block_pairs();
-  double **st = state();
   const int inum = list->inum;
   const int *ilist = list->ilist;
-  const int *first = bfirst.data();
-  const int *jv = bj.data();
-  const double *kv = bk.data();
-  const double dumax = 0.5 * neighbor->skin;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  first.assign(2 * (size_t) nlocal, 0);
+  pj.clear();
+  pk.clear();
+  for (int i = 0; i < nlocal; i++) {
+    h[i] = ksum[i] = 0.0;
+    mom[i][0] = mom[i][1] = mom[i][2] = 0.0;
+  }
+  double vir[3] = {0.0, 0.0, 0.0};
   double dubig = 0.0;
   int ibig = -1, jbig = -1;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    const double si = sx[i];
-    if (std::isnan(si)) {
-      ksum[i] = 0.0;
-      st[i][hcol] = 0.0;
+    first[2 * i] = (int) pj.size();
+    const double qi = q[i];
+    if (std::isnan(qi)) {
+      first[2 * i + 1] = (int) pj.size();
       continue;
     }
-    double hi = 0.0, ki = 0.0;
-    for (int m = first[ii]; m < first[ii + 1]; m++) {
-      const double ds = si - sx[jv[m]];
-      ki += kv[m];
-      hi += kv[m] * ds;
-      if (std::fabs(ds) > dubig) {
-        dubig = std::fabs(ds);
+    const int itype = type[i];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    double hi = 0.0, ki = 0.0, m0 = 0.0, m1 = 0.0, m2 = 0.0;
+    for (int jj = 0; jj < jnum; jj++) {
+      int j = jlist[jj];
+      const double factor = special_lj[sbmask(j)];
+      j &= NEIGHMASK;
+      const double qj = q[j];
+      if (std::isnan(qj)) continue;
+      const int jtype = type[j];
+      double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      if (site_distance) del[d] -= qi - qj;
+      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+      if (rsq > cutsq_in[itype][jtype]) continue;
+      const double k = factor * kval(itype, jtype, rsq, del);
+      pj.push_back(j);
+      pk.push_back(k);
+      const double dq = qi - qj;
+      if (site_distance && std::fabs(dq) > dubig) {
+        dubig = std::fabs(dq);
+        ibig = i;
+        jbig = j;
+      }
+      ki += k;
+      hi += k * dq;
+      m0 += k * del[0];
+      m1 += k * del[1];
+      m2 += k * del[2];
+    }
+    h[i] = hi;
+    ksum[i] = ki;
+    mom[i][0] = m0;
+    mom[i][1] = m1;
+    mom[i][2] = m2;
+    first[2 * i + 1] = (int) pj.size();
+  }
+  // virial (1/2) sum_j del_a f_j along dir, f = -k (q_i - q_j): from the
+  // pairs again (the moments alone do not give it)
+  for (int i = 0; i < nlocal; i++) {
+    const double qi = q[i];
+    if (std::isnan(qi)) continue;
+    for (int m = first[2 * i]; m < first[2 * i + 1]; m++) {
+      const int j = pj[m];
+      const double fd = -pk[m] * (qi - q[j]);
+      double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      if (site_distance) del[d] -= qi - q[j];
+      vir[0] += 0.5 * del[0] * fd;
+      vir[1] += 0.5 * del[1] * fd;
+      vir[2] += 0.5 * del[2] * fd;
+    }
+  }
+  wvir[0] = vir[0];
+  wvir[1] = vir[1];
+  wvir[2] = vir[2];
+  vir_valid = 1;
+  valid = 1;
+  // blocks: a coupled pair stays in the list while the displacements of
+  // its blocks differ by less than the skin (see pair_field())
+  if (site_distance && dubig > 0.5 * neighbor->skin) skin_error(ibig, jbig, dubig);
+}
+
+/* ----------------------------------------------------------------------
+   h and K over the cached pairs with the current coordinates (blocks,
+   whose k_ij at the sites' distance do not change between list builds).
+   A coupled pair stays in the neighbor list of the current positions as
+   long as the blocks' displacements differ by less than the skin: checked
+   with a margin of a factor 2 for the motion until the next list build.
+------------------------------------------------------------------------- */
+
+void PairEQElastic::pair_field(bool /*want_virial*/)
+{
+  const int nlocal = atom->nlocal;
+  const int *fr = first.data();
+  const int *jv = pj.data();
+  const double *kv = pk.data();
+  const double dumax = 0.5 * neighbor->skin;
+  double dubig = 0.0;
+  int ibig = -1, jbig = -1;
+  for (int i = 0; i < nlocal; i++) {
+    const double qi = q[i];
+    if (std::isnan(qi)) continue;
+    double hi = 0.0;
+    for (int m = fr[2 * i]; m < fr[2 * i + 1]; m++) {
+      const double dq = qi - q[jv[m]];
+      hi += kv[m] * dq;
+      if (std::fabs(dq) > dubig) {
+        dubig = std::fabs(dq);
         ibig = i;
         jbig = jv[m];
       }
     }
-    ksum[i] = ki;
-    st[i][hcol] = hi;
+    h[i] = hi;
   }
-  if (dubig > dumax)
-    error->one(FLERR,
-               "Pair eq/elastic: the displacements of coupled blocks {} and {} differ by {:.6g}, more "
-               "than half the neighbor skin {}: coupled pairs may be missing from the neighbor "
-               "list; raise the skin (neighbor SKIN bin) above twice the largest difference",
-               atom->tag[ibig], atom->tag[jbig], dubig, neighbor->skin);
+  vir_valid = 0;
+  if (dubig > dumax) skin_error(ibig, jbig, dubig);
+}
+
+void PairEQElastic::skin_error(int i, int j, double du)
+{
+  error->one(FLERR,
+             "Pair eq/elastic: the displacements of coupled blocks {} and {} differ by {:.6g}, "
+             "more than half the neighbor skin {}: coupled pairs may be missing from the neighbor "
+             "list; raise the skin (neighbor SKIN bin) above twice the largest difference",
+             atom->tag[i], atom->tag[j], du, neighbor->skin);
 }
 
 /* ----------------------------------------------------------------------
-   contacts list[0..n) changed their stretches by ds: h_i += K_i ds_i and
-   h_j -= k_ij ds_i for all partners j (ghost shares returned to owners)
+   the source's coordinates at the current positions (see the top of the
+   file).  Every decision that leads to communication depends only on
+   what all ranks share (the list build, the update count, full).
 ------------------------------------------------------------------------- */
 
-void PairEQElastic::scatter(const int *clist, int n, const double *ds)
+void PairEQElastic::field_update(const double *qin, bool full)
 {
-  double **st = state();
+  grow();
+  ++n_update;
+  ready = 1;
   double **x = atom->x;
-  const int *type = atom->type;
-  const double *special_lj = force->special_lj;
-  const int nall = atom->nlocal + atom->nghost;
   const int nlocal = atom->nlocal;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
+  const int nall = nlocal + atom->nghost;
+  const int d = idir;
 
-  for (int i = 0; i < nall; i++) dh[i] = 0.0;
-  for (int m = 0; m < n; m++) {
-    const int i = clist[m];
-    const double d = ds[i];
-    dh[i] += ksum[i] * d;
-    const int itype = type[i];
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    for (int jj = 0; jj < jnum; jj++) {
-      int j = jlist[jj];
-      const double factor = special_lj[sbmask(j)];
-      j &= NEIGHMASK;
-      if (std::isnan(sx[j])) continue;
-      const int jtype = type[j];
-      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-      if (rsq > cutsq_in[itype][jtype]) continue;
-      dh[j] -= factor * kval(itype, jtype, rsq, del) * d;
-    }
+  if (full || !valid || neighbor->ago == 0) {
+    memcpy(q, qin, nlocal * sizeof(double));
+    rebuild(true);
+    ++n_rebuild;
+    return;
   }
-  EQCompat::reverse_comm(comm, this);
+
+  // the set of coupled atoms changes only at list builds or with `full`
   for (int i = 0; i < nlocal; i++)
-    if (!std::isnan(sx[i])) st[i][hcol] += dh[i];
-  ghosts_current = 0;
+    if (std::isnan(qin[i]) != std::isnan(q[i]))
+      error->one(FLERR, "Pair eq/elastic: atom {} of {} became {} between two neighbor list builds "
+                        "without notice (internal error)", atom->tag[i], source->source_name(),
+                 std::isnan(qin[i]) ? "uncoupled" : "coupled");
+
+  // displacements along dir since the last update, of every coupled atom
+  // this rank holds
+  double dmin = HUGE_VAL, dmax = -HUGE_VAL, xmax = 0.0;
+  for (int i = 0; i < nall; i++) {
+    if (std::isnan(q[i])) continue;
+    const double xi = x[i][d];
+    const double del = xi - xq[i];
+    dmin = del < dmin ? del : dmin;
+    dmax = del > dmax ? del : dmax;
+    const double ax = std::fabs(xi);
+    xmax = ax > xmax ? ax : xmax;
+    xq[i] = xi;
+  }
+  memcpy(q, qin, nlocal * sizeof(double));
+  if (!ghosts_current) sync_ghosts();
+  else
+    for (int i = nlocal; i < nall; i++) q[i] = x[i][d] - w[i];
+
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double tol = UNIFORM_ULPS * eps * (xmax + std::fmax(std::fabs(dmin), std::fabs(dmax)));
+  if (!(dmax - dmin > tol)) {
+    ++n_uniform;    // a rigid translation: h, K and the virial hold
+  } else {
+    ++n_nonuniform;
+    if (site_distance) pair_field(false);
+    else rebuild(false);    // k_ij at the atoms' new distances
+  }
+  if (check_every > 0 && n_update % check_every == 0) drift_check();
 }
 
-/* ---------------------------------------------------------------------- */
+/* ----------------------------------------------------------------------
+   h from scratch, compared with the incremental one
+------------------------------------------------------------------------- */
+
+void PairEQElastic::drift_check()
+{
+  const int nlocal = atom->nlocal;
+  std::vector<double> hold(h, h + nlocal);
+  rebuild(true);
+  ++n_check;
+  for (int i = 0; i < nlocal; i++) {
+    if (std::isnan(q[i])) continue;
+    drift_max = std::fmax(drift_max, std::fabs(hold[i] - h[i]));
+    hscale_max = std::fmax(hscale_max, std::fabs(h[i]));
+  }
+}
+
+/* ----------------------------------------------------------------------
+   atoms list[0..n) changed their coordinates by dq at fixed positions:
+   h_i += K_i dq_i and h_j -= k_ij dq_i for all partners j (ghost shares
+   returned to their owners); the virial changes by -dq_i M_i
+------------------------------------------------------------------------- */
+
+void PairEQElastic::field_change(const int *clist, int n, const double *dqv)
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  memset(dh, 0, nall * sizeof(double));
+  for (int m = 0; m < n; m++) {
+    const int i = clist[m];
+    const double dq = dqv[i];
+    q[i] += dq;
+    w[i] -= dq;
+    dh[i] += ksum[i] * dq;
+    for (int p = first[2 * i]; p < first[2 * i + 1]; p++) dh[pj[p]] -= pk[p] * dq;
+    wvir[0] -= dq * mom[i][0];
+    wvir[1] -= dq * mom[i][1];
+    wvir[2] -= dq * mom[i][2];
+  }
+  comm_mode = 2;
+  EQCompat::reverse_comm(comm, this);
+  for (int i = 0; i < nlocal; i++)
+    if (!std::isnan(q[i])) h[i] += dh[i];
+  ghosts_current = 0;
+  n_change += n;
+}
+
+/* ----------------------------------------------------------------------
+   end of a run: what the updates were and how far the field drifted
+------------------------------------------------------------------------- */
+
+void PairEQElastic::field_report()
+{
+  double local[2] = {drift_max, hscale_max}, all[2];
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  bigint counts[2] = {n_change, n_nonuniform}, sums[2];
+  MPI_Allreduce(counts, sums, 2, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (comm->me == 0 && n_update > 0) {
+    std::string drift = n_check > 0
+        ? fmt::format("{} drift checks: max |h_incremental - h_full| = {:.3g} (max |h| = {:.3g})",
+                      n_check, all[0], all[1])
+        : std::string("no drift check (check 0)");
+    utils::logmesg(lmp, "pair eq/elastic: {} field updates on rank 0: {} rigid translations (no "
+                        "pair work), {} recomputed after list builds, {} non-uniform; {} coordinate "
+                        "changes scattered on all ranks; {}\n",
+                   n_update, n_uniform, n_rebuild, n_nonuniform, sums[0], drift);
+    if (n_check > 0 && all[0] > 1e-9 * all[1])
+      error->warning(FLERR, "Pair eq/elastic: the incremental field drifted by {:.3g} from the "
+                            "recomputed one (max |h| = {:.3g}); lower the check interval "
+                            "(pair_style eq/elastic rcut check N)", all[0], all[1]);
+  }
+  n_update = n_uniform = n_rebuild = n_nonuniform = n_change = n_check = 0;
+  drift_max = hscale_max = 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   forces -h_i along dir; energy and virial from what the field holds
+------------------------------------------------------------------------- */
 
 void PairEQElastic::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  grow();
-  if (!fresh) {
-    // not prepared by fix eq/contacts this step (run 0, minimization,
-    // rerun; always with fix eq/substrate): stretches or displacements
-    // from the current positions, no breaking
-    if (fix) fix->update_stretches();
-    field();
-  }
-  fresh = 0;
+  if (!ready)
+    error->all(FLERR, "Pair eq/elastic: the field was not updated by {} before this force "
+                      "evaluation; a command that evaluates forces outside run, minimize or rerun "
+                      "is not supported with this pair style", source ? source->source_name() : "its fix");
+  ready = 0;
+  // after breaks the ghosts hold their owners' coordinates of before: the
+  // energy below and single() (compute pair/local) need the new ones
+  if (!ghosts_current) sync_ghosts();
 
-  double **st = state();
   double **f = atom->f;
   const int nlocal = atom->nlocal;
   const int d = idir;
   for (int i = 0; i < nlocal; i++)
-    if (!std::isnan(sx[i])) f[i][d] -= st[i][hcol];
-
-  // after an avalanche the stretches held here (local and ghost) are those
-  // before its breaks: reload them, for the energy below and for single()
-  // (compute pair/local), one forward communication on steps with breaks
-  if (!ghosts_current) load_stretches();
+    if (!std::isnan(q[i])) f[i][d] -= h[i];
   if (!evflag) return;
 
-  // energy and virial: one more pass, only on steps that need them
   double **x = atom->x;
-  const int *type = atom->type;
-  const double *special_lj = force->special_lj;
-  const int inum = list->inum;
-  const int *ilist = list->ilist;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
-  double fv[3] = {0.0, 0.0, 0.0};
-
-  if (sub) {
-    // blocks: the cached pairs, the virial at the sites' separation
-    if (bcache != neighbor->ncalls || (int) bfirst.size() != inum + 1) block_pairs();
-    for (int ii = 0; ii < inum; ii++) {
-      const int i = ilist[ii];
-      const double si = sx[i];
-      if (std::isnan(si)) continue;
-      for (int m = bfirst[ii]; m < bfirst[ii + 1]; m++) {
-        const int j = bj[m];
-        const double k = bk[m], ds = si - sx[j];
+  if (eflag_atom || vflag_atom) {
+    // per-atom tallies over the pairs (global ones included)
+    double fv[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < nlocal; i++) {
+      const double qi = q[i];
+      if (std::isnan(qi)) continue;
+      for (int m = first[2 * i]; m < first[2 * i + 1]; m++) {
+        const int j = pj[m];
+        const double k = pk[m], dq = qi - q[j];
         double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-        del[d] -= ds;
-        fv[d] = -k * ds;
-        ev_tally_xyz_full(i, 0.5 * k * ds * ds, 0.0, fv[0], fv[1], fv[2], del[0], del[1], del[2]);
+        if (site_distance) del[d] -= dq;
+        fv[d] = -k * dq;
+        ev_tally_xyz_full(i, 0.5 * k * dq * dq, 0.0, fv[0], fv[1], fv[2], del[0], del[1], del[2]);
       }
     }
     return;
   }
-
-  for (int ii = 0; ii < inum; ii++) {
-    const int i = ilist[ii];
-    const double si = sx[i];
-    if (std::isnan(si)) continue;
-    const int itype = type[i];
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
-    for (int jj = 0; jj < jnum; jj++) {
-      int j = jlist[jj];
-      const double factor = special_lj[sbmask(j)];
-      j &= NEIGHMASK;
-      const double sj = sx[j];
-      if (std::isnan(sj)) continue;
-      const int jtype = type[j];
-      const double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-      if (rsq > cutsq_in[itype][jtype]) continue;
-      const double k = factor * kval(itype, jtype, rsq, del);
-      const double ds = si - sj;
-      fv[d] = -k * ds;
-      ev_tally_xyz_full(i, 0.5 * k * ds * ds, 0.0, fv[0], fv[1], fv[2], del[0], del[1], del[2]);
+  // E = (1/2) sum_i q_i h_i: each pair's (1/2) k (q_i - q_j)^2 once over all
+  // ranks (k symmetric, ghosts carry their owners' q)
+  if (eflag_global) {
+    double e = 0.0;
+    for (int i = 0; i < nlocal; i++)
+      if (!std::isnan(q[i])) e += q[i] * h[i];
+    eng_vdwl += 0.5 * e;
+  }
+  if (vflag_global) {
+    if (!vir_valid) {
+      double vir[3] = {0.0, 0.0, 0.0};
+      for (int i = 0; i < nlocal; i++) {
+        const double qi = q[i];
+        if (std::isnan(qi)) continue;
+        for (int m = first[2 * i]; m < first[2 * i + 1]; m++) {
+          const int j = pj[m];
+          const double dq = qi - q[j], fd = -pk[m] * dq;
+          double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+          if (site_distance) del[d] -= dq;
+          vir[0] += 0.5 * del[0] * fd;
+          vir[1] += 0.5 * del[1] * fd;
+          vir[2] += 0.5 * del[2] * fd;
+        }
+      }
+      wvir[0] = vir[0];
+      wvir[1] = vir[1];
+      wvir[2] = vir[2];
+      vir_valid = 1;
+    }
+    // LAMMPS' components xx yy zz xy xz yz of del_a f_b for f along dir
+    if (d == 0) virial[0] += wvir[0];
+    else if (d == 1) {
+      virial[1] += wvir[1];
+      virial[3] += wvir[0];
+    } else {
+      virial[2] += wvir[2];
+      virial[4] += wvir[0];
+      virial[5] += wvir[1];
     }
   }
 }
 
 /* ----------------------------------------------------------------------
-   energy of one pair; the force is not central (it acts along the sliding
-   direction), so fforce = 0 and svector = {k_ij, force on i along dir}
+   energy of one pair; the force is not central (it acts along the
+   source's direction), so fforce = 0 and svector = {k_ij, force on i
+   along dir}
 ------------------------------------------------------------------------- */
 
 double PairEQElastic::single(int i, int j, int itype, int jtype, double rsq,
@@ -639,22 +752,20 @@ double PairEQElastic::single(int i, int j, int itype, int jtype, double rsq,
 {
   fforce = 0.0;
   svector[0] = svector[1] = 0.0;
-  if ((!fix && !sub) || !sx || i >= nmax || j >= nmax) return 0.0;
-  if (std::isnan(sx[i]) || std::isnan(sx[j])) return 0.0;
+  if (!source || !q || i >= nmax || j >= nmax) return 0.0;
+  if (std::isnan(q[i]) || std::isnan(q[j])) return 0.0;
   if (rsq > cutsq_in[itype][jtype]) return 0.0;
   double **x = atom->x;
   double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-  if (sub) del[idir] -= sx[i] - sx[j];
+  if (site_distance) del[idir] -= q[i] - q[j];
   rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
   if (rsq > cutsq_in[itype][jtype]) return 0.0;
   const double k = factor_lj * kval(itype, jtype, rsq, del);
-  const double ds = sx[i] - sx[j];
+  const double dq = q[i] - q[j];
   svector[0] = k;
-  svector[1] = -k * ds;
-  return 0.5 * k * ds * ds;
+  svector[1] = -k * dq;
+  return 0.5 * k * dq * dq;
 }
-
-/* ---------------------------------------------------------------------- */
 
 /* ----------------------------------------------------------------------
    fix adapt: the kernels are built by pair_coeff, and the cached block
@@ -681,18 +792,18 @@ void *PairEQElastic::extract(const char *str, int &dim)
 
 int PairEQElastic::pack_forward_comm(int n, int *list_, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
-  for (int i = 0; i < n; i++) buf[i] = sx[list_[i]];
+  for (int i = 0; i < n; i++) buf[i] = q[list_[i]];
   return n;
 }
 
-void PairEQElastic::unpack_forward_comm(int n, int first, double *buf)
+void PairEQElastic::unpack_forward_comm(int n, int first_, double *buf)
 {
-  for (int i = 0; i < n; i++) sx[first + i] = buf[i];
+  for (int i = 0; i < n; i++) q[first_ + i] = buf[i];
 }
 
-int PairEQElastic::pack_reverse_comm(int n, int first, double *buf)
+int PairEQElastic::pack_reverse_comm(int n, int first_, double *buf)
 {
-  for (int i = 0; i < n; i++) buf[i] = dh[first + i];
+  for (int i = 0; i < n; i++) buf[i] = dh[first_ + i];
   return n;
 }
 
@@ -709,6 +820,7 @@ void PairEQElastic::write_restart_settings(FILE *fp)
 {
   fwrite(&cut_global, sizeof(double), 1, fp);
   fwrite(&mix_flag, sizeof(int), 1, fp);
+  fwrite(&check_every, sizeof(int), 1, fp);
 }
 
 void PairEQElastic::read_restart_settings(FILE *fp)
@@ -716,9 +828,11 @@ void PairEQElastic::read_restart_settings(FILE *fp)
   if (comm->me == 0) {
     utils::sfread(FLERR, &cut_global, sizeof(double), 1, fp, nullptr, error);
     utils::sfread(FLERR, &mix_flag, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &check_every, sizeof(int), 1, fp, nullptr, error);
   }
   MPI_Bcast(&cut_global, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&mix_flag, 1, MPI_INT, 0, world);
+  MPI_Bcast(&check_every, 1, MPI_INT, 0, world);
 }
 
 void PairEQElastic::write_restart(FILE *fp)
@@ -800,6 +914,8 @@ void PairEQElastic::read_restart(FILE *fp)
 double PairEQElastic::memory_usage()
 {
   double bytes = Pair::memory_usage();
-  bytes += 3.0 * nmax * sizeof(double);
+  bytes += 9.0 * nmax * sizeof(double);
+  bytes += (double) pj.capacity() * sizeof(int) + pk.capacity() * sizeof(double);
+  bytes += (double) first.capacity() * sizeof(int);
   return bytes;
 }

@@ -1,12 +1,13 @@
 /* -*- c++ -*- ----------------------------------------------------------
    FRICTION-EQ package for LAMMPS: pair_style eq/elastic
 
-   Elastic interaction between the contacts of fix eq/contacts (Braun et
-   al., Secs. III-IV): energy (1/2) sum_ij k_ij (x_i - x_j)^2 of the
-   contacts' stretches x_i, with k(r) = ftilde/r below lambda_c and
-   ftilde lambda_c^2/r^3 beyond (or a table).  Its per-contact force
-   h_i = sum_j k_ij (x_i - x_j) enters the breaking test of the fix.
-   With fix eq/substrate, x_i are the displacements of FK-ME blocks.
+   Elastic interaction between the atoms of one coordinate source (fix
+   eq/contacts: contact stretches; fix eq/substrate: block displacements;
+   Braun et al., Secs. III-V): energy (1/2) sum_ij k_ij (q_i - q_j)^2 with
+   k(r) = ftilde/r below lambda_c and ftilde lambda_c^2/r^3 beyond (or a
+   table).  The style is the source's elastic field (eq_field.h): it keeps
+   h_i = sum_j k_ij (q_i - q_j) and K_i = sum_j k_ij, updates them
+   incrementally and applies -h_i along the source's direction.
    See doc/src/pair_eq_elastic.rst.
 ------------------------------------------------------------------------- */
 
@@ -21,13 +22,14 @@ PairStyle(eq/elastic,PairEQElastic);
 
 #include "pair.h"
 
+#include "eq_field.h"
 #include "eq_kernel.h"
 
 #include <vector>
 
 namespace LAMMPS_NS {
 
-class PairEQElastic : public Pair {
+class PairEQElastic : public Pair, public EQElasticField {
  public:
   PairEQElastic(class LAMMPS *);
   ~PairEQElastic() override;
@@ -49,20 +51,17 @@ class PairEQElastic : public Pair {
   void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
-  // --- interface for fix eq/contacts (the contact state lives there) ---
-  // h_i (column INTERACT of the fix state) and K_i = sum_j k_ij of every
-  // local contact from the stretches in the fix state (ghosts updated first)
-  void field();
-  // contacts list[0..n) changed their stretch by ds[list[m]]: update h of
-  // all local contacts (scatter over the full neighbor list, reverse comm)
-  void scatter(const int *list, int n, const double *ds);
-  // K_i = sum_j k_ij of local contact i (valid after field())
-  double coupling(int i) const { return ksum[i]; }
-  // the fix has just computed h for the current positions (this step)
-  void set_fresh() { fresh = 1; }
+  // EQElasticField
+  const EQCoordinateSource *field_source() const override { return source; }
+  void field_update(const double *q, bool full) override;
+  void field_change(const int *list, int n, const double *dq) override;
+  const double *field_h() const override { return h; }
+  const double *field_k() const override { return ksum; }
+  void field_report() override;
 
  protected:
   double cut_global;
+  int check_every;             // drift check every this many uniform updates (0: never)
   double **cut, **cutsq_in;    // cutoffs; squared with a 1e-12 relative margin
   double **ftilde, **lambda;   // crossover coefficients (for extract)
   int **kidx;                  // kernel of a type pair (index into kernels)
@@ -70,30 +69,43 @@ class PairEQElastic : public Pair {
   std::vector<feq::Kernel> kernels;
   int anisotropic;
 
-  class FixEQContacts *fix;       // the contacts, or nullptr
-  class FixEQSubstrate *sub;      // or the FK-ME blocks, or nullptr
-  int hcol;                       // column of h_i in the fix's state
-  int idir;
-  int fresh;         // h in the fix state is current for this step
-  int comm_mode;     // what forward comm carries
-  int nmax;
-  double *sx;        // stretches of local and ghost contacts (NaN: not a contact)
-  double *dh;        // scattered changes of h (local and ghost)
-  double *ksum;      // K_i of local contacts
-  int ghosts_current;    // ghost stretches match the fix state
+  const EQCoordinateSource *source;
+  int idir, sgroupbit;
+  bool site_distance;
 
-  // blocks of fix eq/substrate: their sites do not move, so the coupled
-  // pairs of a neighbor list and their k_ij are found once per list build
-  std::vector<int> bfirst, bj;    // offsets per ilist entry, partner j
-  std::vector<double> bk;         // k_ij (special factor included)
-  bigint bcache;                  // neighbor->ncalls of the cached list (-1: none)
-  void block_pairs();
-  void field_blocks();
+  // per-atom arrays (local and ghost unless noted), valid between two
+  // neighbor list builds: q the coordinates; xq the positions along dir
+  // at the last update; w = x - q along dir at the last synchronization
+  // of the ghosts (for ghosts: q = x - w while no coordinate changes at
+  // fixed positions); h, ksum, mom (local) the field, K_i, and the first
+  // moments M_i,a = sum_j k_ij del_ij,a of the virial; dh scattered changes
+  int nmax;
+  double *q, *xq, *w, *h, *ksum, *dh;
+  double (*mom)[3];
+
+  // coupled pairs of the current neighbor list: atom i's partners are
+  // pj[first[i] .. first[i+1]) with k_ij pk (special factor included)
+  std::vector<int> first, pj;
+  std::vector<double> pk;
+
+  int valid;             // arrays and pairs match the current list and atoms
+  int ghosts_current;    // ghost q equal their owners' q
+  int ready;             // field_update since the last compute()
+  int vir_valid;         // wvir holds this rank's share of the virial
+  double wvir[3];        // sum over local i of (1/2) sum_j del_ij,a f_ij (f along dir)
+  int comm_mode;
+
+  // what the updates cost and how far the incremental field drifted
+  bigint n_update, n_uniform, n_rebuild, n_nonuniform, n_change, n_check;
+  double drift_max, hscale_max;
 
   void allocate();
   void grow();
-  void load_stretches();
-  double **state();
+  void sync_ghosts();
+  void rebuild(bool fresh_ghosts);
+  void pair_field(bool want_virial);
+  void drift_check();
+  void skin_error(int i, int j, double du);
   double kval(int itype, int jtype, double rsq, const double *del) const;
 };
 

@@ -46,8 +46,18 @@ class EQInteractErrors : public LAMMPSTest {
 TEST_F(EQInteractErrors, PairStyleAndCoeffs)
 {
   TEST_FAILURE(".*ERROR: Illegal pair_style eq/elastic command: expected 'pair_style eq/elastic "
-               "rcut'.*",
+               "rcut \\[check N\\]'.*",
                command("pair_style eq/elastic"););
+  TEST_FAILURE(".*ERROR: Illegal pair_style eq/elastic command: expected 'pair_style eq/elastic "
+               "rcut \\[check N\\]'.*",
+               command("pair_style eq/elastic 3.0 check"););
+  TEST_FAILURE(".*ERROR: Pair style eq/elastic: unknown keyword 'every'; allowed: check.*",
+               command("pair_style eq/elastic 3.0 every 10"););
+  TEST_FAILURE(".*ERROR: Pair style eq/elastic: check must be an integer >= 0 \\(0: never; got "
+               "-5\\).*",
+               command("pair_style eq/elastic 3.0 check -5"););
+  TEST_FAILURE(".*ERROR: Pair style eq/elastic: check: expected an integer, got '2.5'.*",
+               command("pair_style eq/elastic 3.0 check 2.5"););
   TEST_FAILURE(".*ERROR: Pair style eq/elastic: rcut must be a finite number > 0 \\(got -1\\).*",
                command("pair_style eq/elastic -1"););
   TEST_FAILURE(".*ERROR: Pair style eq/elastic: rcut must be a finite number > 0 \\(got 1e999\\).*",
@@ -139,8 +149,9 @@ TEST_F(EQInteractErrors, PairNeedsContactsAndMixing)
   command("unfix a");
   command("fix d all eq/contacts 1.0 6 threshold uniform 0.75 1.25");
   END_HIDE_OUTPUT();
-  TEST_FAILURE(".*ERROR: Pair style eq/elastic found 2 fixes eq/contacts and 0 fixes "
-               "eq/substrate; allowed: exactly one of either.*",
+  TEST_FAILURE(".*ERROR: Pair style eq/elastic found 2 fixes with coordinates \\(fix c "
+               "eq/contacts, fix d eq/contacts\\); allowed: exactly one fix eq/contacts or "
+               "eq/substrate.*",
                command("run 0 post no"););
   BEGIN_HIDE_OUTPUT();
   command("unfix d");

@@ -250,8 +250,9 @@ TEST_F(EQSubstrateErrors, PairWithBlocks)
     fix("1.0 sawtooth 1.0");
     command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25");
   });
-  TEST_FAILURE(".*ERROR: Pair style eq/elastic found 1 fixes eq/contacts and 1 fixes eq/substrate; "
-               "allowed: exactly one of either.*",
+  TEST_FAILURE(".*ERROR: Pair style eq/elastic found 2 fixes with coordinates \\(fix s "
+               "eq/substrate, fix c eq/contacts\\); allowed: exactly one fix eq/contacts or "
+               "eq/substrate.*",
                command("run 0 post no"););
   HIDE_OUTPUT([&] {
     command("unfix c");

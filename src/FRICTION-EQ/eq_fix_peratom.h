@@ -1,0 +1,47 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: the per-atom bookkeeping shared by the
+   package's fixes (fix eq/contacts, fix eq/substrate): a state of ncol
+   doubles per atom that grows with the atom arrays, migrates with its
+   atom between ranks, goes into restart files and is the fix's per-atom
+   output array (the pattern of fix spring/self and fix STORE).  A new atom
+   starts with a row of zeros; each fix gives that row its meaning.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_EQ_FIX_PERATOM_H
+#define LMP_EQ_FIX_PERATOM_H
+
+#include "fix.h"
+
+namespace LAMMPS_NS {
+
+class FixEQPerAtom : public Fix {
+ public:
+  FixEQPerAtom(class LAMMPS *, int, char **);
+  ~FixEQPerAtom() override;
+
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+
+ protected:
+  int ncol;          // doubles per atom
+  double **state;    // nmax x ncol, also array_atom
+  // allocate for the current atoms, register the callbacks, set the
+  // per-atom output (noutput columns, the first ones of the state) and
+  // the restart/exchange flags; rows of the current atoms are zeroed
+  void peratom_setup(int ncol, int noutput);
+
+ private:
+  int callbacks;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
