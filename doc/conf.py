@@ -1,8 +1,9 @@
 # Sphinx configuration for the FRICTION-EQ documentation (LAMMPS format).
 #   sphinx-build -W -b html doc/src doc/html -c doc
 # Code blocks use LAMMPS' own Pygments lexer when the LAMMPS tree is known
-# (environment variable LAMMPS_DIR, or .cache/lammps); :doc: references to
-# LAMMPS pages that are not part of this package resolve to docs.lammps.org.
+# (environment variable LAMMPS_DIR, else the trees ./friction-eq fetches into
+# .cache/lammps-<version>); :doc: references to LAMMPS pages that are not
+# part of this package resolve to docs.lammps.org.
 import os
 import sys
 from pathlib import Path
@@ -16,7 +17,11 @@ exclude_patterns = []
 html_theme = "alabaster"
 html_static_path = []
 root = Path(__file__).resolve().parents[1]
-lammps = Path(os.environ.get("LAMMPS_DIR", root / ".cache" / "lammps"))
+if os.environ.get("LAMMPS_DIR"):
+    lammps = Path(os.environ["LAMMPS_DIR"])
+else:
+    lammps = next((root / ".cache" / d for d in ("lammps-2026", "lammps-2025", "lammps-2021", "lammps")
+                   if (root / ".cache" / d / "doc").is_dir()), root / ".cache" / "lammps")
 lexer_dir = lammps / "doc" / "utils" / "sphinx-config"
 if (lexer_dir / "LAMMPSLexer.py").exists():
     sys.path.insert(0, str(lexer_dir))
