@@ -132,6 +132,90 @@ TEST(Distributions, RealisticClosedForms)
   EXPECT_NEAR(d->quantile(d->cdf(1e-3)) / 1e-3, 1.0, 1e-13);
 }
 
+// The densities and moments against their closed forms, written out here
+// (the tests above check each distribution only against itself: cdf against
+// the quadrature of its own pdf).  Tolerance 1e-14: a few ulp of the O(1)
+// values (the closed forms use erfc and exp, each correct to ~1 ulp).
+namespace {
+double phi_n(double z) { return std::exp(-0.5 * z * z) / std::sqrt(2.0 * M_PI); }
+double Phi_upper(double z) { return 0.5 * std::erfc(z / std::sqrt(2.0)); }
+}    // namespace
+
+TEST(Distributions, DensitiesAndMomentsAgainstClosedForms)
+{
+  // normal truncated to x > a: Z = P(N > alpha), lambda = phi(alpha)/Z, mean
+  // mu + sd lambda, variance sd^2 (1 + alpha lambda - lambda^2)
+  const double mu = 0.4, sd = 0.3, a = 0.0, alpha = (a - mu) / sd;
+  const double Z = Phi_upper(alpha), lam = phi_n(alpha) / Z;
+  const auto g = make_gaussian(mu, sd, a);
+  const double mean = mu + sd * lam, var = sd * sd * (1.0 + alpha * lam - lam * lam);
+  EXPECT_NEAR(g->mean(), mean, 1e-14);
+  EXPECT_NEAR(g->second_moment(), var + mean * mean, 1e-14);
+  for (double x : {-0.1, 0.05, 0.4, 0.9, 1.7}) {
+    const double z = (x - mu) / sd;
+    EXPECT_NEAR(g->pdf(x), x > a ? phi_n(z) / (sd * Z) : 0.0, 1e-14) << x;
+    EXPECT_NEAR(g->sf(x), x > a ? Phi_upper(z) / Z : 1.0, 1e-14) << x;
+  }
+  // untruncated normal
+  const auto n = make_gaussian(-0.2, 0.1, -INF);
+  EXPECT_NEAR(n->mean(), -0.2, 1e-14);
+  EXPECT_NEAR(n->second_moment(), 0.01 + 0.04, 1e-14);
+  for (double x : {-0.5, -0.2, 0.0, 0.1}) EXPECT_NEAR(n->pdf(x), phi_n((x + 0.2) / 0.1) / 0.1, 1e-13) << x;
+  // realistic with xs != 1: (2/xs) u^3 exp(-u^2), u = x/xs; mean 0.75 sqrt(pi) xs, <x^2> = 2 xs^2
+  const double xs = 1.3;
+  const auto r = make_realistic(xs);
+  EXPECT_NEAR(r->mean(), 0.75 * std::sqrt(M_PI) * xs, 1e-14);
+  EXPECT_NEAR(r->second_moment(), 2.0 * xs * xs, 1e-14);
+  for (double x : {0.1, 0.7, 1.3, 2.9}) {
+    const double u = x / xs;
+    EXPECT_NEAR(r->pdf(x), 2.0 / xs * u * u * u * std::exp(-u * u), 1e-14) << x;
+    EXPECT_NEAR(r->sf(x), (1.0 + u * u) * std::exp(-u * u), 1e-14) << x;
+  }
+  // uniform [lo, hi]: 1/(hi-lo), mean (lo+hi)/2, <x^2> = (lo^2 + lo hi + hi^2)/3
+  const auto un = make_uniform(0.75, 1.25);
+  EXPECT_NEAR(un->mean(), 1.0, 1e-15);
+  EXPECT_NEAR(un->second_moment(), (0.5625 + 0.9375 + 1.5625) / 3.0, 1e-15);
+  EXPECT_EQ(un->pdf(1.0), 2.0);
+  EXPECT_EQ(un->pdf(0.7), 0.0);
+  EXPECT_EQ(un->pdf(1.3), 0.0);
+}
+
+// A table is the piecewise-linear density through its points, normalized
+// by its trapezoid integral: density, cdf and moments of that interpolant
+// computed here segment by segment (exact sums; rounding ~1e-15 over 40
+// segments).
+TEST(Distributions, TableIsTheNormalizedLinearInterpolant)
+{
+  std::vector<double> tx, tp;
+  for (int i = 0; i <= 40; ++i) {
+    tx.push_back(0.5 + 0.025 * i);
+    tp.push_back(1.0 + std::sin(0.3 * i) * 0.8);
+  }
+  const auto t = make_table(tx, tp, "sine");
+  double total = 0.0, m1 = 0.0, m2 = 0.0;
+  std::vector<double> cum{0.0};
+  for (size_t k = 0; k + 1 < tx.size(); ++k) {
+    const double h = tx[k + 1] - tx[k], x0 = tx[k], p0 = tp[k], dp = tp[k + 1] - tp[k];
+    total += h * (p0 + 0.5 * dp);
+    cum.push_back(total);
+    // int_0^h (x0 + y)^n (p0 + dp y/h) dy, n = 1, 2
+    m1 += x0 * h * (p0 + 0.5 * dp) + h * h * (p0 / 2 + dp / 3);
+    m2 += x0 * x0 * h * (p0 + 0.5 * dp) + 2 * x0 * h * h * (p0 / 2 + dp / 3) + h * h * h * (p0 / 3 + dp / 4);
+  }
+  for (size_t k = 0; k < tx.size(); ++k) {
+    EXPECT_NEAR(t->pdf(tx[k]), tp[k] / total, 1e-14) << tx[k];
+    EXPECT_NEAR(t->cdf(tx[k]), cum[k] / total, 1e-14) << tx[k];
+    if (k + 1 < tx.size()) {
+      const double xm = 0.5 * (tx[k] + tx[k + 1]);
+      EXPECT_NEAR(t->pdf(xm), 0.5 * (tp[k] + tp[k + 1]) / total, 1e-14) << xm;
+    }
+  }
+  EXPECT_EQ(t->pdf(0.49), 0.0);
+  EXPECT_EQ(t->pdf(1.51), 0.0);
+  EXPECT_NEAR(t->mean(), m1 / total, 1e-14);
+  EXPECT_NEAR(t->second_moment(), m2 / total, 1e-14);
+}
+
 // Conditioned draws X > lo reproduce the conditional distribution (KS).
 TEST(Distributions, SampleAboveIsConditional)
 {
@@ -184,6 +268,17 @@ TEST(Tables, ReadPotentialsFile)
     EXPECT_NEAR(t->sf_integral(0.0, v), u->sf_integral(0.0, v), 1e-15);
   }
   read_table_file(path, "REALISTIC_1.0", x, p);
+  // the shipped points are the paper's P_c0(x) = 2 x^3 exp(-x^2) on x = 0.01 i,
+  // i = 0..600, to the 15 printed digits (5e-15 relative), plus the
+  // abscissa's own rounding (x printed to 10 digits, computed as 0.01 i: an
+  // ulp, which moves ln P_c by |3 - 2x^2| eps) and exp's (a few eps)
+  ASSERT_EQ(x.size(), 601u);
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (size_t i = 0; i < x.size(); ++i) {
+    EXPECT_NEAR(x[i], 0.01 * i, 1e-15 * (1 + x[i]));
+    const double rel = 5e-15 + (std::fabs(3.0 - 2.0 * x[i] * x[i]) + 4.0) * eps;
+    EXPECT_NEAR(p[i], 2.0 * x[i] * x[i] * x[i] * std::exp(-x[i] * x[i]), rel * p[i] + 1e-300) << x[i];
+  }
   const auto r = make_table(x, p, "r");
   const auto ra = make_realistic(1.0);
   // linear interpolation on a 0.01 grid: error ~ h^2 f''/8

@@ -1,10 +1,14 @@
 """Outputs and hooks of fix eq/contacts: fix_modify energy, the global
-vector against compute reduce over the per-atom array, minimization (the
-contacts hold and the slider relaxes onto the anchors), and atoms created
-after the fix."""
+vector against sums computed here from the dumped positions and the model
+(and, for consistency, against compute reduce over the per-atom array),
+minimization (the contacts hold and the slider relaxes onto the anchors),
+and atoms created after the fix."""
 from pathlib import Path
 
+import numpy as np
+
 import eqtools
+from eqtools import fkme
 
 INPUT = Path(__file__).resolve().parent / "inputs" / "in.outputs"
 
@@ -18,14 +22,58 @@ def thermo_rows(log):
     return rows
 
 
+EPS = np.finfo(float).eps
+
+
+def check_against_the_model(rows, dump_path):
+    """The global outputs against the model evaluated here from the dump
+    (every 50 steps of the sliding run): the stretch s_i = xu_i - a_i from
+    the atom's unwrapped position and its anchor, F = sum k_i s_i, E = 1/2
+    sum k_i s_i^2; the force in LAMMPS' force array f_x,i = -k_i s_i and
+    its sum -F (the slider's force balance); and the break counts from the
+    anchors: re-forming at 0 (reform delta 0.0) moves the anchor by the
+    breaking stretch x_s in [0.75, 1.25] (crossing exact), so a contact
+    with n breaks has 0.75 n <= a_i - a_i(0) <= 1.25 n, a_i(0) = xu_i(0)
+    (start relaxed).
+
+    Tolerances, all rounding: the test's s_i and the fix's differ by a few
+    ulp of the coordinates, ds <= 4 eps max|xu, a|; a sum of n terms
+    carries n eps sum|term|; thermo prints 15 digits (%20.15g: 5e-15
+    relative)."""
+    steps, d = fkme.read_dump(dump_path)
+    assert list(steps) == [0, 50, 100, 150, 200, 250]
+    thermo = {int(r[0]): r for r in rows if r[0] <= 250}
+    a0 = d["f_c[6]"][0]
+    assert np.array_equal(a0, d["xu"][0])               # relaxed start
+    for k, step in enumerate(steps):
+        xu, fx, nb, kk, a = (d[c][k] for c in ("xu", "fx", "f_c[4]", "f_c[5]", "f_c[6]"))
+        n = len(xu)
+        _, pe, _, _, F, _, total, _, _, _ = thermo[step]
+        s = xu - a
+        ds = 4 * EPS * max(np.abs(xu).max(), np.abs(a).max())
+        F_ref, E_ref = np.sum(kk * s), 0.5 * np.sum(kk * s * s)
+        tol_F = 5e-15 * abs(F) + np.sum(kk) * ds + 2 * n * EPS * np.sum(np.abs(kk * s))
+        tol_E = 5e-15 * abs(pe) + np.sum(kk * np.abs(s)) * ds + 2 * n * EPS * E_ref
+        assert abs(F - F_ref) <= tol_F, (step, F, F_ref, tol_F)
+        assert abs(pe - E_ref) <= tol_E, (step, pe, E_ref, tol_E)
+        assert np.all(np.abs(fx + kk * s) <= kk * ds + EPS * np.abs(kk * s)), step
+        assert abs(F + np.sum(fx)) <= 5e-15 * abs(F) + 2 * n * EPS * np.sum(np.abs(fx)), step
+        da = a - a0
+        assert np.all(0.75 * nb - ds <= da) and np.all(da <= 1.25 * nb + ds), step
+        assert total == np.sum(nb), step
+    assert d["f_c[4]"][-1].min() >= 1 and d["f_c[4]"][-1].max() >= 3   # the test has breaks
+
+
 def test_outputs_energy_minimize_and_new_atoms(tmp_path):
     log = eqtools.run_lammps(INPUT, {"out": tmp_path}, cwd=tmp_path)
     rows = thermo_rows(log)
-    # columns: step pe f_c f_c[5] f_c[1] c_F f_c[3] c_B f_c[4] f_c[7]
+    check_against_the_model(rows, tmp_path / "contacts.dump")
+    # consistency of the outputs with each other; columns:
+    # step pe f_c f_c[5] f_c[1] c_F f_c[3] c_B f_c[4] f_c[7]
     for step, pe, scalar, energy, F, sumF, total, sumB, att, n in rows:
         assert pe == scalar == energy                     # fix_modify energy yes
-        assert abs(F - sumF) <= 1e-12 * max(1.0, abs(F))  # global F = sum of per-atom forces
-        assert total == sumB                              # total breaks = sum of per-atom counts
+        assert abs(F - sumF) <= 1e-12 * max(1.0, abs(F))  # global F = compute reduce of f_c[3]
+        assert total == sumB                              # total breaks = compute reduce of f_c[4]
         assert att == n
     run = [r for r in rows if r[0] <= 250]
     assert run[-1][6] > 500                               # contacts broke while sliding

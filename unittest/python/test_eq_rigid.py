@@ -93,14 +93,16 @@ def test_deviation_shrinks_as_inverse_sqrt_N(tmp_path):
             logN.append(math.log(N))
             logD2.append(math.log(d2))
             ratio.append(N * d2 / np.mean(m[:, 2] ** 2))
+    from scipy import stats
     A = np.vstack([np.ones(len(logN)), logN]).T
     coef, res, _, _ = np.linalg.lstsq(A, np.array(logD2), rcond=None)
     dof = len(logN) - 2
     s2 = float(res[0]) / dof
     se_slope = math.sqrt(s2 * np.linalg.inv(A.T @ A)[1, 1])
-    t = 3.77    # Student t, 22 dof, two-sided p = 1e-3
+    t = stats.t.ppf(1 - 0.5e-3, dof)        # two-sided p = 1e-3: 3.79 for 22 dof
     assert abs(coef[1] + 1.0) < t * se_slope, (coef[1], se_slope)
     r = np.array(ratio)
+    t = stats.t.ppf(1 - 0.5e-3, len(r) - 1)  # 3.77 for 23 dof
     assert abs(r.mean() - 1.0) < t * r.std(ddof=1) / math.sqrt(len(r)), r
 
 

@@ -307,19 +307,58 @@ def test_substrate_force_of_the_shapes(tmp_path):
     assert np.all(a[neg] == 0.0)
 
 
+EPS = np.finfo(float).eps
+
+
+def phi_uniform_block(u):
+    """Exact phi(u) = <x>(X = u) of a rigid block on one period [0, 1.25]:
+    thresholds uniform on [0.75, 1.25] (density 2), re-forming at 0,
+    relaxed start.  A contact re-formed at s >= 0.75 has stretch u - s <=
+    0.5 < 0.75 there, so none breaks twice: <x> = u J(u) + int_0.75^u (u -
+    s) 2 ds with J(u) = (1.25 - u)/0.5, i.e. u below 0.75 and 2u(1.25 - u)
+    + (u - 0.75)^2 above (a closed form, no ME solver involved)."""
+    u = np.asarray(u, float)
+    return np.where(u <= 0.75, u, 2 * u * (1.25 - u) + (u - 0.75) ** 2)
+
+
+def print_rounding(v, digits=12):
+    """Half a unit in the last of `digits` significant digits (%.{digits}g)."""
+    return 0.5 * 10.0 ** (1 - digits) * np.abs(v)
+
+
 def test_master_equation_table_is_the_block_force(tmp_path):
     """eq-me writes phi(u) = F(u)/(N k_c) of a rigid block (uniform
     thresholds [0.75, 1.25]) on [0, u_c = 1.25]; fix eq/substrate table
-    gives k_c phi at any u, equal to the ME force F(X = u) to the
-    interpolation error of the table grid (dx = 0.005: < 1e-4)."""
+    gives k_c phi at any u.  Checked against references the code under
+    test does not compute:
+
+    * the table's points against the closed form phi_uniform_block: F is
+      piecewise quadratic with its kinks (0.75, 1.25) on the grid, so the
+      second-order error of the ME is exactly c dx^2 and Richardson removes
+      it; left: the %.12g printing (5e-13 relative) and rounding over the
+      250 steps (250 eps);
+    * the fix's force at 60 displacements over two periods against the
+      linear interpolation of that table done here in numpy: rounding only
+      (r = u mod u_c resolved to ~4 eps |u|, times |phi'| <= 1.5, and ~4
+      eps |phi| in the interpolation; times k_c);
+    * the same force against the exact phi: linear interpolation between
+      grid points h = 0.005 apart errs by at most h^2/8 max|phi''| = h^2/4
+      (phi'' = 0, -2), plus the table's rounding."""
+    kc = 2.0
     run_eqme(["threshold", "uniform", "0.75", "1.25", "xmax", "2", "dx", "0.005",
-              "substrate", "sub.table", "BLOCK", "1.25", "force", "me.dat"], cwd=tmp_path)
-    me = np.loadtxt(tmp_path / "me.dat")
-    u, fs, a = substrate_forces(tmp_path, "table sub.table BLOCK", kc=2.0, n=60, du=0.0417, u0=0.013)
-    r = np.mod(u, 1.25)
-    ref = np.interp(r, me[:, 0], me[:, 1])
-    assert np.abs(fs + 2.0 * ref).max() < 2.0 * 1e-4
+              "substrate", "sub.table", "BLOCK", "1.25"], cwd=tmp_path)
+    tab = read_section(tmp_path / "sub.table", "BLOCK")
+    tu, tphi = tab[:, 0], tab[:, 1]
+    assert len(tu) == 251 and tu[-1] == 1.25
+    assert np.all(np.abs(tphi - phi_uniform_block(tu)) <= print_rounding(tphi) + 250 * EPS)
+    u, fs, a = substrate_forces(tmp_path, "table sub.table BLOCK", kc=kc, n=60, du=0.0417, u0=0.013)
     assert (u > 1.25).sum() > 10    # second period used
+    r = np.mod(u, 1.25)
+    tol_interp = kc * (1.5 * 4 * EPS * np.abs(u).max() + 4 * EPS * tphi.max())
+    assert np.abs(fs + kc * np.interp(r, tu, tphi)).max() <= tol_interp
+    h = 0.005
+    tol_exact = kc * (h * h / 4 + print_rounding(tphi.max()) + 250 * EPS) + tol_interp
+    assert np.abs(fs + kc * phi_uniform_block(r)).max() <= tol_exact
 
 
 def test_energy_is_the_potential_of_the_current_k_c(tmp_path):
@@ -422,12 +461,65 @@ def test_bonds_and_pair_couple_the_chain_alike(tmp_path):
     assert np.abs(a["x"] - b["x"]).max() < 1e-9
 
 
+def renewal_mean_stretch_realistic(Xmax, h):
+    """<x>(X) of a rigid block, realistic thresholds P_c = 2x^3 exp(-x^2)
+    (x_s = 1), re-forming at 0, relaxed start, from the renewal equations
+    (independent of the ME solver): the renewal density g = f + g * f with
+    the lifetime density f = P_c, and <x>(X) = X J(X) + int_0^X g(s) (X-s)
+    J(X-s) ds, J = (1 + X^2) exp(-X^2).  Trapezoid rule on the grid X = k h
+    (its error has an expansion in h^2, h^4: smooth integrands, f(0) = 0)."""
+    X = np.arange(int(round(Xmax / h)) + 1) * h
+    J = (1 + X ** 2) * np.exp(-X ** 2)
+    f = 2 * X ** 3 * np.exp(-X ** 2)
+    g = np.zeros_like(X)
+    for i in range(1, len(X)):          # g_0 = f_0 = 0: the end terms vanish
+        g[i] = f[i] + h * np.dot(g[1:i], f[i - 1:0:-1])
+    XJ = X * J
+    F = XJ.copy()
+    for i in range(1, len(X)):
+        w = g[:i + 1] * XJ[i::-1]
+        F[i] += h * (w.sum() - 0.5 * (w[0] + w[-1]))
+    return X, F
+
+
 def test_packaged_substrate_table_is_reproduced(tmp_path):
-    """potentials/eq_substrate.table is what tools/make_substrate_tables.py
-    writes with the package's ME solver (no hand-edited numbers)."""
+    """potentials/eq_substrate.table against references computed here,
+    not by the package's ME solver:
+
+    * UNIFORM_0.75_1.25: the closed form phi_uniform_block at every point,
+      to the %.12g printing plus rounding (see the previous test);
+    * REALISTIC_1.0 (u_c = 2): the renewal solution of
+      renewal_mean_stretch_realistic, Richardson-extrapolated from the
+      trapezoid rule at h = 5e-4 and 2.5e-4 (error estimated by the change
+      from h = 1e-3, 5e-4: ~1e-14).  The table is the ME at dx = 0.005,
+      Richardson-extrapolated: its remainder is O(dx^4), bounded by dx^4
+      max|d^4F/dX^4| (from the reference, fourth differences at spacing
+      0.05: ~14, so 9e-9, while the second-order error Richardson removes
+      is 1.8e-6 here: a table without it, or for another distribution,
+      fails), plus the printing and twice the reference's error estimate;
+
+    then that it is what tools/make_substrate_tables.py writes with the
+    package's ME solver (no hand-edited numbers; reproducibility)."""
     import subprocess
     import sys
     root = Path(__file__).resolve().parents[2]
+    uni = read_section(root / "potentials" / "eq_substrate.table", "UNIFORM_0.75_1.25")
+    assert uni[0, 0] == 0.0 and uni[-1, 0] == 1.25 and len(uni) == 251
+    assert np.all(np.abs(uni[:, 1] - phi_uniform_block(uni[:, 0]))
+                  <= print_rounding(uni[:, 1]) + 250 * EPS)
+    rea = read_section(root / "potentials" / "eq_substrate.table", "REALISTIC_1.0")
+    assert rea[0, 0] == 0.0 and rea[-1, 0] == 2.0 and len(rea) == 401
+    refs = {h: renewal_mean_stretch_realistic(2.0, h) for h in (1e-3, 5e-4, 2.5e-4)}
+    Xr = refs[1e-3][0]
+    rich = {h: (4 * refs[h / 2][1][::2] - refs[h][1]) / 3 for h in (1e-3, 5e-4)}
+    ref = rich[5e-4][::2]                                  # on the grid of h = 1e-3
+    ref_err = np.abs(ref - rich[1e-3]).max()
+    k = np.rint(rea[:, 0] / 1e-3).astype(int)
+    assert np.allclose(Xr[k], rea[:, 0], rtol=0, atol=1e-12)
+    c = ref[::50]                                          # spacing 0.05
+    d4 = np.abs(c[4:] - 4 * c[3:-1] + 6 * c[2:-2] - 4 * c[1:-3] + c[:-4]).max() / 0.05 ** 4
+    tol = 0.005 ** 4 * d4 + print_rounding(rea[:, 1]) + 2 * ref_err
+    assert np.all(np.abs(rea[:, 1] - ref[k]) <= tol), np.abs(rea[:, 1] - ref[k]).max()
     out = tmp_path / "sub.table"
     subprocess.run([sys.executable, str(root / "tools" / "make_substrate_tables.py"), str(out)],
                    check=True, stdout=subprocess.DEVNULL, env=dict(os.environ))
