@@ -45,12 +45,11 @@ enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE
 /* ---------------------------------------------------------------------- */
 
 FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
-    FixEQPerAtom(lmp, narg, arg), idir(0), ilevel_respa(0), nlevels_respa(0), level_field(-1),
-    rev_break(0), exact(1), window(0.5), drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0),
-    dseed(0), njump(0), jump_step(-1), jump_tag(0), jump_size(0.0), field(nullptr), neval(0),
-    reduced_eval(-1), chained(0)
+    FixEQBlocks(lmp, narg, arg), rev_break(0), exact(1), window(0.5), dseed(0), njump(0),
+    jump_step(-1), jump_tag(0), jump_size(0.0), neval(0), reduced_eval(-1), chained(0)
 {
-  name = fmt::format("fix {} eq/substrate", id);
+  sitecol = SITE;
+  flagcol = DISORDER;
   for (double &v : global_sum) v = 0.0;
   if (narg < 5)
     error->all(FLERR, "Illegal fix eq/substrate command: expected 'fix ID group eq/substrate kc "
@@ -110,20 +109,8 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
 
     while (iarg < args.size()) {
       const std::string &kw = args[iarg++];
-      if (kw == "dir") {
-        if (iarg >= args.size()) throw feq::SpecError("dir: missing value; allowed: x, y, z");
-        const std::string &v = args[iarg++];
-        if (v == "x") idir = 0;
-        else if (v == "y") idir = 1;
-        else if (v == "z") idir = 2;
-        else throw feq::SpecError("dir: unknown value '" + v + "'; allowed: x, y, z");
-      } else if (kw == "drive") {
-        kdrive = value(iarg, "drive K");
-        vstage = value(iarg, "drive v");
-        if (!(kdrive > 0.0)) throw feq::SpecError("drive: K must be > 0 (got " + args[iarg - 2] + ")");
-        drive_flag = 1;
-      } else if (kw == "stage") {
-        stage0 = value(iarg, "stage X0");
+      if (parse_block_keyword(kw, args, iarg, value, stage0)) {
+        continue;
       } else if (kw == "crossing") {
         if (iarg >= args.size()) throw feq::SpecError("crossing: missing value; allowed: exact, step");
         const std::string &v = args[iarg++];
@@ -225,11 +212,7 @@ int FixEQSubstrate::setmask()
 
 void FixEQSubstrate::init()
 {
-  if (utils::strmatch(update->integrate_style, "^respa")) {
-    nlevels_respa = ((Respa *) update->integrate)->nlevels;
-    ilevel_respa = nlevels_respa - 1;
-    if (respa_level >= 0) ilevel_respa = MIN(respa_level, ilevel_respa);
-  }
+  init_blocks();
   // the force window of the integrator (crossing exact), told by what the
   // time-integrating fixes do: one that only updates the positions from
   // the current forces (initial_integrate alone: first-order overdamped,
@@ -253,57 +236,6 @@ void FixEQSubstrate::init()
                    overdamped ? "first-order overdamped" : "velocity-Verlet");
   window = w;
 
-  // the elastic field that couples the blocks (pair eq/elastic), and the
-  // r-RESPA level its forces are computed at
-  field = dynamic_cast<EQElasticField *>(force->pair);
-  if (field && field->field_source() != this) field = nullptr;
-  level_field = -1;
-  if (field && utils::strmatch(update->integrate_style, "^respa")) {
-    level_field = ((Respa *) update->integrate)->level_pair;
-    if (level_field < 0)
-      error->all(FLERR, "Fix eq/substrate: pair eq/elastic must be computed at one r-RESPA level "
-                        "(run_style respa ... pair N); inner/middle/outer levels are not allowed");
-  }
-}
-
-/* ----------------------------------------------------------------------
-   the blocks' displacements to the elastic field, before every force
-   evaluation of the pair style
-------------------------------------------------------------------------- */
-
-void FixEQSubstrate::push_field()
-{
-  const int *const mask = atom->mask;
-  const int nlocal = atom->nlocal;
-  if ((int) qbuf.size() < atom->nmax) qbuf.resize(atom->nmax);
-  for (int i = 0; i < nlocal; i++)
-    qbuf[i] = (mask[i] & groupbit) ? displacement(i) : std::numeric_limits<double>::quiet_NaN();
-  field->field_update(qbuf.data(), false);
-}
-
-void FixEQSubstrate::setup_pre_force(int /*vflag*/)
-{
-  if (field) push_field();
-}
-
-void FixEQSubstrate::pre_force(int /*vflag*/)
-{
-  if (field) push_field();
-}
-
-void FixEQSubstrate::min_pre_force(int /*vflag*/)
-{
-  if (field) push_field();
-}
-
-void FixEQSubstrate::setup_pre_force_respa(int /*vflag*/, int ilevel)
-{
-  if (field && ilevel == level_field) push_field();
-}
-
-void FixEQSubstrate::pre_force_respa(int /*vflag*/, int ilevel, int /*iloop*/)
-{
-  if (field && ilevel == level_field) push_field();
 }
 
 void FixEQSubstrate::setup(int vflag)
@@ -338,26 +270,6 @@ void FixEQSubstrate::min_post_force(int /*vflag*/)
 }
 
 /* ----------------------------------------------------------------------
-   the stage advances with the positions, before the forces of the step
-   (a sum of v dt: a restarted run continues it bit for bit)
-------------------------------------------------------------------------- */
-
-void FixEQSubstrate::post_integrate()
-{
-  if (drive_flag) stage += vstage * update->dt;
-}
-
-// r-RESPA: with the steps of the level the forces are applied at, so that
-// every force evaluation sees the stage at the time of its positions (the
-// outermost level: once per step by v dt, as without r-RESPA)
-void FixEQSubstrate::post_integrate_respa(int ilevel, int /*iloop*/)
-{
-  if (ilevel == ilevel_respa && drive_flag)
-    stage += vstage * ((Respa *) update->integrate)->step[ilevel];
-}
-
-
-/* ----------------------------------------------------------------------
    a block first seen in the group: its site is where it is now; its
    quenched factor d is a pure function of (seed, atom ID)
 ------------------------------------------------------------------------- */
@@ -372,18 +284,6 @@ void FixEQSubstrate::init_block(int i)
   s[DISORDER] = disorder.dist
       ? disorder.dist->sample(feq::draw(dseed, atom->tag[i], 0, feq::STREAM_STIFFNESS))
       : 1.0;
-}
-
-/* ----------------------------------------------------------------------
-   displacement u_i = x_i - site_i along dir (undoing a wrap of LAMMPS'
-   image counter, as fix eq/contacts does)
-------------------------------------------------------------------------- */
-
-double FixEQSubstrate::displacement(int i)
-{
-  if (state[i][DISORDER] == 0.0) init_block(i);
-  const EQUtil::Unwrap unwrap(atom, domain, idir);
-  return unwrap.fix(unwrap(i) - state[i][SITE]);
 }
 
 /* ----------------------------------------------------------------------
@@ -493,7 +393,7 @@ void FixEQSubstrate::apply()
 
 void FixEQSubstrate::post_run()
 {
-  if (field) field->field_report();
+  FixEQBlocks::post_run();
   bigint total = 0;
   MPI_Allreduce(&njump, &total, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   if (total > 0) {
@@ -583,48 +483,6 @@ void FixEQSubstrate::reduce()
 }
 
 /* ----------------------------------------------------------------------
-   global restart: the stage (position now, velocity now, i.e. including a
-   change by fix_modify velocity) so that a restarted run continues the
-   driving protocol, and whether the writing fix had a stage at all
-------------------------------------------------------------------------- */
-
-void FixEQSubstrate::write_restart(FILE *fp)
-{
-  const double list[3] = {stage, vstage, (double) drive_flag};
-  if (comm->me == 0) {
-    int size = 3 * sizeof(double);
-    fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 3, fp);
-  }
-}
-
-// the stage position and velocity of the file replace the command's stage
-// X0 and drive v only when both the writing fix and this one have driving
-// springs; the stiffness K is always the command's
-void FixEQSubstrate::restart(char *buf)
-{
-  const double *list = (const double *) buf;
-  const bool file_drive = list[2] != 0.0;
-  if (!drive_flag) {
-    if (file_drive && comm->me == 0)
-      error->warning(FLERR, "Fix eq/substrate: the restart file has driving springs, this fix "
-                            "has none (no drive keyword): the stage is not restored");
-    return;
-  }
-  if (!file_drive) {
-    if (comm->me == 0)
-      utils::logmesg(lmp, "fix eq/substrate: the restart file has no driving springs: the stage "
-                          "starts at X0 = {} with v = {} of this command\n", stage, vstage);
-    return;
-  }
-  stage = list[0];
-  vstage = list[1];
-  if (comm->me == 0)
-    utils::logmesg(lmp, "fix eq/substrate: stage restored from the restart file: X_s = {}, "
-                        "v = {}\n", stage, vstage);
-}
-
-/* ----------------------------------------------------------------------
    fix_modify ID kc GROUP value   k_c of the blocks in GROUP
    fix_modify ID velocity v       stage velocity from now on
 ------------------------------------------------------------------------- */
@@ -650,18 +508,7 @@ int FixEQSubstrate::modify_param(int narg, char **arg)
     reduced_eval = -1;    // the energies change with k_c
     return 3;
   }
-  if (strcmp(arg[0], "velocity") == 0) {
-    if (narg < 2)
-      error->all(FLERR, "Illegal fix_modify {} velocity command: expected 'fix_modify {} velocity v'",
-                 id, id);
-    if (!drive_flag)
-      error->all(FLERR, "Fix_modify {} velocity: fix {} has no stage (add the drive keyword)", id, id);
-    const double value = EQUtil::numeric(lmp, fmt::format("Fix_modify {} velocity", id), arg[1]);
-    if (!std::isfinite(value))
-      error->all(FLERR, "Fix_modify {} velocity: v must be finite (got {})", id, arg[1]);
-    vstage = value;
-    return 2;
-  }
+  if (const int used = modify_velocity(narg, arg)) return used;
   // LAMMPS handles its own keywords (energy, virial, respa, ...) before
   // asking the fix: anything else is unknown
   error->all(FLERR, "Fix_modify {}: unknown keyword '{}'; allowed: kc, velocity (and LAMMPS' "

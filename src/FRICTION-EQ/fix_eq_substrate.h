@@ -20,8 +20,7 @@ FixStyle(eq/substrate,FixEQSubstrate);
 #ifndef LMP_FIX_EQ_SUBSTRATE_H
 #define LMP_FIX_EQ_SUBSTRATE_H
 
-#include "eq_field.h"
-#include "eq_fix_peratom.h"
+#include "eq_fix_blocks.h"
 
 #include "eq_distribution.h"
 #include "eq_substrate.h"
@@ -31,7 +30,7 @@ FixStyle(eq/substrate,FixEQSubstrate);
 
 namespace LAMMPS_NS {
 
-class FixEQSubstrate : public FixEQPerAtom, public EQCoordinateSource {
+class FixEQSubstrate : public FixEQBlocks {
  public:
   FixEQSubstrate(class LAMMPS *, int, char **);
   ~FixEQSubstrate() override;
@@ -39,13 +38,6 @@ class FixEQSubstrate : public FixEQPerAtom, public EQCoordinateSource {
   void init() override;
   void setup(int) override;
   void min_setup(int) override;
-  void setup_pre_force(int) override;
-  void pre_force(int) override;
-  void min_pre_force(int) override;
-  void setup_pre_force_respa(int, int) override;
-  void pre_force_respa(int, int, int) override;
-  void post_integrate() override;
-  void post_integrate_respa(int, int) override;
   void post_force(int) override;
   void post_force_respa(int, int, int) override;
   void min_post_force(int) override;
@@ -54,15 +46,6 @@ class FixEQSubstrate : public FixEQPerAtom, public EQCoordinateSource {
   double compute_vector(int) override;
   int modify_param(int, char **) override;
 
-  void write_restart(FILE *) override;
-  void restart(char *) override;
-
-  // EQCoordinateSource: the blocks' displacements, coupled at the
-  // distance of their sites
-  int source_dir() const override { return idir; }
-  int source_groupbit() const override { return groupbit; }
-  const char *source_name() const override { return name.c_str(); }
-  bool source_site_distance() const override { return true; }
 
   // columns of the per-atom state (also the per-atom output array):
   // displacement u, substrate force -k_c d phi, driving-spring force
@@ -73,12 +56,8 @@ class FixEQSubstrate : public FixEQPerAtom, public EQCoordinateSource {
   enum { DISP, FSUB, FDRIVE, KC, DISORDER, ANCHOR, SITE, INTERACT, NCOL };
 
  private:
-  std::string name;     // "fix ID eq/substrate"
   double kc;            // default k_c of a block
   feq::SubstrateShape shape;
-  int idir;
-  int ilevel_respa, nlevels_respa;
-  int level_field;      // r-RESPA level of the pair style's forces (-1: verlet)
   // backward motion: periodic prolongation of F_s, or the block's
   // contacts break at u - a = -u_c as they do at +u_c (reverse break)
   int rev_break;
@@ -87,9 +66,6 @@ class FixEQSubstrate : public FixEQPerAtom, public EQCoordinateSource {
   // brownian's [t_n, t_n+1], 1/2: velocity Verlet's [t_n+1/2, t_n+3/2])
   int exact;
   double window;
-  // driving springs to the stage at X_s, advanced by v dt every step
-  int drive_flag;
-  double kdrive, vstage, stage;
   // quenched disorder of the blocks' k_c (threshold force) factors d_n
   feq::DistributionSpec disorder;
   bigint dseed;
@@ -99,11 +75,6 @@ class FixEQSubstrate : public FixEQPerAtom, public EQCoordinateSource {
   bigint njump, jump_step;
   tagint jump_tag;
   double jump_size;
-
-  // the elastic field that couples the blocks (pair eq/elastic), or
-  // nullptr; the coordinates handed to it
-  EQElasticField *field;
-  std::vector<double> qbuf;
 
   // sums over the blocks (velocity, displacement, forces, energies, count)
   enum { S_VEL, S_DISP, S_FSUB, S_FDRIVE, S_ESUB, S_EDRIVE, S_COUNT, NSUM };
@@ -115,10 +86,7 @@ class FixEQSubstrate : public FixEQPerAtom, public EQCoordinateSource {
   int chained;
   void reduce();
 
-  void init_block(int i);
-  // displacement u_i = x_i - site_i of local atom i in the group
-  double displacement(int i);
-  void push_field();
+  void init_block(int i) override;
   void apply();
 };
 

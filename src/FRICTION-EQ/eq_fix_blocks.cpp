@@ -1,0 +1,220 @@
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: the package's block fixes' shared part
+   (see eq_fix_blocks.h)
+------------------------------------------------------------------------- */
+
+#include "eq_fix_blocks.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "pair.h"
+#include "respa.h"
+#include "update.h"
+#include "utils.h"
+
+#include "eq_distribution.h"
+#include "eq_lammps_util.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+using namespace LAMMPS_NS;
+
+FixEQBlocks::FixEQBlocks(LAMMPS *lmp, int narg, char **arg) :
+    FixEQPerAtom(lmp, narg, arg), idir(0), sitecol(0), flagcol(0), ilevel_respa(0), nlevels_respa(0),
+    level_field(-1), drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0), field(nullptr)
+{
+  name = fmt::format("fix {} {}", id, style);
+}
+
+bool FixEQBlocks::parse_block_keyword(const std::string &kw, const std::vector<std::string> &args,
+                                      size_t &iarg, const ValueParser &value, double &stage0)
+{
+  if (kw == "dir") {
+    if (iarg >= args.size()) throw feq::SpecError("dir: missing value; allowed: x, y, z");
+    const std::string &v = args[iarg++];
+    if (v == "x") idir = 0;
+    else if (v == "y") idir = 1;
+    else if (v == "z") idir = 2;
+    else throw feq::SpecError("dir: unknown value '" + v + "'; allowed: x, y, z");
+    return true;
+  }
+  if (kw == "drive") {
+    kdrive = value(iarg, "drive K");
+    vstage = value(iarg, "drive v");
+    if (!(kdrive > 0.0)) throw feq::SpecError("drive: K must be > 0 (got " + args[iarg - 2] + ")");
+    drive_flag = 1;
+    return true;
+  }
+  if (kw == "stage") {
+    stage0 = value(iarg, "stage X0");
+    return true;
+  }
+  return false;
+}
+
+void FixEQBlocks::init_blocks()
+{
+  if (utils::strmatch(update->integrate_style, "^respa")) {
+    nlevels_respa = ((Respa *) update->integrate)->nlevels;
+    ilevel_respa = nlevels_respa - 1;
+    if (respa_level >= 0) ilevel_respa = MIN(respa_level, ilevel_respa);
+  }
+  // the elastic field that couples the blocks (pair eq/elastic), and the
+  // r-RESPA level its forces are computed at
+  field = dynamic_cast<EQElasticField *>(force->pair);
+  if (field && field->field_source() != this) field = nullptr;
+  level_field = -1;
+  if (field && utils::strmatch(update->integrate_style, "^respa")) {
+    level_field = ((Respa *) update->integrate)->level_pair;
+    if (level_field < 0)
+      error->all(FLERR, "Fix {}: pair eq/elastic must be computed at one r-RESPA level "
+                        "(run_style respa ... pair N); inner/middle/outer levels are not allowed",
+                 style);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   displacements (blocks seen for the first time are set up)
+------------------------------------------------------------------------- */
+
+void FixEQBlocks::displacements(double *u)
+{
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const EQUtil::Unwrap unwrap(atom, domain, idir);
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) {
+      u[i] = std::numeric_limits<double>::quiet_NaN();
+      continue;
+    }
+    if (state[i][flagcol] == 0.0) init_block(i);
+    u[i] = unwrap.fix(unwrap(i) - state[i][sitecol]);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   the blocks' displacements to the elastic field, before every force
+   evaluation of the pair style
+------------------------------------------------------------------------- */
+
+void FixEQBlocks::push_field()
+{
+  if ((int) qbuf.size() < atom->nmax) qbuf.resize(atom->nmax);
+  displacements(qbuf.data());
+  field->field_update(qbuf.data(), false);
+}
+
+void FixEQBlocks::setup_pre_force(int /*vflag*/)
+{
+  if (field) push_field();
+}
+
+void FixEQBlocks::pre_force(int /*vflag*/)
+{
+  if (field) push_field();
+}
+
+void FixEQBlocks::min_pre_force(int /*vflag*/)
+{
+  if (field) push_field();
+}
+
+void FixEQBlocks::setup_pre_force_respa(int /*vflag*/, int ilevel)
+{
+  if (field && ilevel == level_field) push_field();
+}
+
+void FixEQBlocks::pre_force_respa(int /*vflag*/, int ilevel, int /*iloop*/)
+{
+  if (field && ilevel == level_field) push_field();
+}
+
+void FixEQBlocks::post_run()
+{
+  if (field) field->field_report();
+}
+
+/* ----------------------------------------------------------------------
+   the stage advances with the positions, before the forces of the step
+   (a sum of v dt: a restarted run continues it bit for bit)
+------------------------------------------------------------------------- */
+
+void FixEQBlocks::post_integrate()
+{
+  if (drive_flag) stage += vstage * update->dt;
+}
+
+// r-RESPA: with the steps of the level the forces are applied at, so that
+// every force evaluation sees the stage at the time of its positions (the
+// outermost level: once per step by v dt, as without r-RESPA)
+void FixEQBlocks::post_integrate_respa(int ilevel, int /*iloop*/)
+{
+  if (ilevel == ilevel_respa && drive_flag)
+    stage += vstage * ((Respa *) update->integrate)->step[ilevel];
+}
+
+/* ----------------------------------------------------------------------
+   fix_modify ID velocity v: stage velocity from now on
+------------------------------------------------------------------------- */
+
+int FixEQBlocks::modify_velocity(int narg, char **arg)
+{
+  if (strcmp(arg[0], "velocity") != 0) return 0;
+  if (narg < 2)
+    error->all(FLERR, "Illegal fix_modify {} velocity command: expected 'fix_modify {} velocity v'",
+               id, id);
+  if (!drive_flag)
+    error->all(FLERR, "Fix_modify {} velocity: fix {} has no stage (add the drive keyword)", id, id);
+  const double value = EQUtil::numeric(lmp, fmt::format("Fix_modify {} velocity", id), arg[1]);
+  if (!std::isfinite(value))
+    error->all(FLERR, "Fix_modify {} velocity: v must be finite (got {})", id, arg[1]);
+  vstage = value;
+  return 2;
+}
+
+/* ----------------------------------------------------------------------
+   global restart: the stage (position now, velocity now, i.e. including a
+   change by fix_modify velocity) so that a restarted run continues the
+   driving protocol, and whether the writing fix had a stage at all
+------------------------------------------------------------------------- */
+
+void FixEQBlocks::write_restart(FILE *fp)
+{
+  const double list[3] = {stage, vstage, (double) drive_flag};
+  if (comm->me == 0) {
+    int size = 3 * sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 3, fp);
+  }
+}
+
+// the stage position and velocity of the file replace the command's stage
+// X0 and drive v only when both the writing fix and this one have driving
+// springs; the stiffness K is always the command's
+void FixEQBlocks::restart(char *buf)
+{
+  const double *list = (const double *) buf;
+  const bool file_drive = list[2] != 0.0;
+  if (!drive_flag) {
+    if (file_drive && comm->me == 0)
+      error->warning(FLERR, "Fix {}: the restart file has driving springs, this fix has none (no "
+                            "drive keyword): the stage is not restored", style);
+    return;
+  }
+  if (!file_drive) {
+    if (comm->me == 0)
+      utils::logmesg(lmp, "fix {}: the restart file has no driving springs: the stage starts at "
+                          "X0 = {} with v = {} of this command\n", style, stage, vstage);
+    return;
+  }
+  stage = list[0];
+  vstage = list[1];
+  if (comm->me == 0)
+    utils::logmesg(lmp, "fix {}: stage restored from the restart file: X_s = {}, v = {}\n", style,
+                   stage, vstage);
+}

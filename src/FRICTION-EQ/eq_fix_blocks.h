@@ -1,0 +1,84 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: what the package's block fixes share
+   (fix eq/substrate: FK-ME blocks, Sec. V B; fix eq/meso: lambda_c blocks
+   with their own master equation, far zone).
+
+   Each atom of the group is a block with a site (the unwrapped coordinate
+   along dir where its displacement u is 0, set when the block is first
+   seen).  The displacements are the coordinates of an elastic field
+   (pair eq/elastic couples the blocks at the distance of their sites):
+   they are handed to it before every force evaluation.  Optional driving
+   springs K tie every block to a stage at X_s that moves with velocity v:
+   keywords drive K v and stage X0, fix_modify ID velocity v, restart of
+   the stage.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_EQ_FIX_BLOCKS_H
+#define LMP_EQ_FIX_BLOCKS_H
+
+#include "eq_field.h"
+#include "eq_fix_peratom.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixEQBlocks : public FixEQPerAtom, public EQCoordinateSource {
+ public:
+  FixEQBlocks(class LAMMPS *, int, char **);
+
+  void setup_pre_force(int) override;
+  void pre_force(int) override;
+  void min_pre_force(int) override;
+  void setup_pre_force_respa(int, int) override;
+  void pre_force_respa(int, int, int) override;
+  void post_integrate() override;
+  void post_integrate_respa(int, int) override;
+  void post_run() override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+  // EQCoordinateSource: the blocks' displacements, coupled at the
+  // distance of their sites
+  int source_dir() const override { return idir; }
+  int source_groupbit() const override { return groupbit; }
+  const char *source_name() const override { return name.c_str(); }
+  bool source_site_distance() const override { return true; }
+
+ protected:
+  std::string name;    // "fix ID style"
+  int idir;
+  int sitecol;         // column of the site in the per-atom state
+  int flagcol;         // a column that is 0 until the block is set up
+  int ilevel_respa, nlevels_respa;
+  int level_field;     // r-RESPA level of the pair style's forces (-1: verlet)
+  // driving springs to the stage at X_s, advanced by v dt every step
+  int drive_flag;
+  double kdrive, vstage, stage;
+  // the elastic field that couples the blocks (pair eq/elastic), or
+  // nullptr; the coordinates handed to it
+  EQElasticField *field;
+  std::vector<double> qbuf;
+
+  // a block first seen in the group (its site is where it is now)
+  virtual void init_block(int i) = 0;
+  // the keywords dir, drive, stage; false: not one of them
+  using ValueParser = std::function<double(size_t &, const std::string &)>;
+  bool parse_block_keyword(const std::string &kw, const std::vector<std::string> &args,
+                           size_t &iarg, const ValueParser &value, double &stage0);
+  // r-RESPA levels and the field (from the derived init())
+  void init_blocks();
+  // fix_modify ID velocity v; returns the number of arguments used (0: not it)
+  int modify_velocity(int narg, char **arg);
+  // displacement u = x - site of every local block (NaN: not a block)
+  void displacements(double *u);
+
+ private:
+  void push_field();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
