@@ -546,17 +546,33 @@ void PairEQElastic::field_update(const double *qin, bool full)
     return;
   }
 
-  // the set of coupled atoms changes only at list builds or with `full`
-  for (int i = 0; i < nlocal; i++)
-    if (std::isnan(qin[i]) != std::isnan(q[i]))
-      error->one(FLERR, "Pair eq/elastic: atom {} of {} became {} between two neighbor list builds "
-                        "without notice (internal error)", atom->tag[i], source->source_name(),
-                 std::isnan(qin[i]) ? "uncoupled" : "coupled");
-
-  // displacements along dir since the last update, of every coupled atom
-  // this rank holds
+  // displacements along dir since the last update of every coupled atom
+  // this rank holds; the set of coupled atoms changes only at list builds
+  // or with `full`
   double dmin = HUGE_VAL, dmax = -HUGE_VAL, xmax = 0.0;
-  for (int i = 0; i < nall; i++) {
+  int changed = -1;
+  for (int i = 0; i < nlocal; i++) {
+    const double qi = qin[i];
+    if (std::isnan(q[i])) {
+      if (!std::isnan(qi)) changed = i;
+      continue;
+    }
+    if (std::isnan(qi)) changed = i;
+    const double xi = x[i][d];
+    const double del = xi - xq[i];
+    dmin = del < dmin ? del : dmin;
+    dmax = del > dmax ? del : dmax;
+    const double ax = std::fabs(xi);
+    xmax = ax > xmax ? ax : xmax;
+    xq[i] = xi;
+    q[i] = qi;
+  }
+  if (changed >= 0)
+    error->one(FLERR, "Pair eq/elastic: atom {} of {} became {} between two neighbor list builds "
+                      "without notice (internal error)", atom->tag[changed], source->source_name(),
+               std::isnan(qin[changed]) ? "uncoupled" : "coupled");
+  if (!ghosts_current) sync_ghosts();    // after breaks: the owners' new coordinates
+  for (int i = nlocal; i < nall; i++) {
     if (std::isnan(q[i])) continue;
     const double xi = x[i][d];
     const double del = xi - xq[i];
@@ -565,11 +581,8 @@ void PairEQElastic::field_update(const double *qin, bool full)
     const double ax = std::fabs(xi);
     xmax = ax > xmax ? ax : xmax;
     xq[i] = xi;
+    q[i] = xi - w[i];
   }
-  memcpy(q, qin, nlocal * sizeof(double));
-  if (!ghosts_current) sync_ghosts();
-  else
-    for (int i = nlocal; i < nall; i++) q[i] = x[i][d] - w[i];
 
   const double eps = std::numeric_limits<double>::epsilon();
   const double tol = UNIFORM_ULPS * eps * (xmax + std::fmax(std::fabs(dmin), std::fabs(dmax)));
@@ -644,7 +657,8 @@ void PairEQElastic::field_report()
     std::string drift = n_check > 0
         ? fmt::format("{} drift checks: max |h_incremental - h_full| = {:.3g} (max |h| = {:.3g})",
                       n_check, all[0], all[1])
-        : std::string("no drift check (check 0)");
+        : (check_every > 0 ? fmt::format("no drift check (one every {} updates)", check_every)
+                           : std::string("no drift check (check 0)"));
     utils::logmesg(lmp, "pair eq/elastic: {} field updates on rank 0: {} rigid translations (no "
                         "pair work), {} recomputed after list builds, {} non-uniform; {} coordinate "
                         "changes scattered on all ranks; {}\n",
