@@ -2,9 +2,13 @@
 """Benchmarks of interacting contacts (pair eq/elastic, issue 3).
 
 1. Pair cost per contact-step against pair lj/cut at the same cutoff
-   (same neighbours), measured in one LAMMPS run (in.bench-pair), for a
-   few N on 1 and 2 ranks.  The eq/elastic cost includes the field the
-   fix computes for the breaking test (pre_force) and the forces.
+   (same neighbours), measured in one LAMMPS run (in.bench-pair), for
+   N = 4096 ... 1e6 on 1 and 2 ranks, in the steady state of a rigidly
+   moving slider.  The eq/elastic cost includes what the fix does for the
+   interaction (the field update and the avalanches in pre_force) and the
+   forces; a second eq/elastic run with ten times the breaks gives the
+   cost per break.  The neighbour list builds are shown apart (lj/cut: a
+   half list; eq/elastic: a full list).
 2. Run time against error: F(X) of a rigid slider (N = 4080, kappa = 0.03,
    lambda_c = 3) driven by fixed steps dX, against the quasi-static run
    (fix eq/quasistatic) of the same contacts, which has no step error.
@@ -30,7 +34,8 @@ SECTIONS = ("Pair", "Neigh", "Comm", "Modify")
 def parse_runs(log):
     out = {}
     parts = log.split("BENCH ")[1:]
-    for p in parts:
+    breaks = [float(v) for v in re.findall(r"^BREAKS ([0-9.eE+-]+)", log, re.M)]
+    for k, p in enumerate(parts):
         name = p.split()[0]
         loop = float(re.search(r"Loop time of ([0-9.eE+-]+)", p).group(1))
         steps = int(re.search(r"for (\d+) steps with (\d+) atoms", p).group(1))
@@ -41,17 +46,21 @@ def parse_runs(log):
             t[sec] = float(m.group(2)) if m else 0.0
         nb = re.search(r"Ave neighs/atom = ([0-9.]+)", p)
         out[name] = {"loop": loop, "steps": steps, "natoms": natoms, "t": t,
-                     "neigh": float(nb.group(1)) if nb else 0.0}
+                     "neigh": float(nb.group(1)) if nb else 0.0,
+                     "breaks": breaks[k] - (breaks[k - 1] if k > 0 else 0.0) if k < len(breaks) else 0.0}
     return out
 
 
-def pair_table(sizes, ranks, steps, out):
-    print("pair eq/elastic vs lj/cut, rcut = 3 (36 lattice neighbours), ns per contact-step")
-    print(f"{'N':>7} {'ranks':>5} {'no pair':>8} {'lj/cut':>8} {'eq/elastic':>10} "
-          f"{'lj pair':>8} {'eq pair':>8} {'ratio':>6}  neighbours/atom (lj half, eq full)")
+def pair_table(sizes, ranks, work, out):
+    print("pair eq/elastic vs lj/cut, rcut = 3 (36 lattice neighbours), steady sliding of a rigid "
+          "slider, dX = 0.001 per step; ns per contact-step (run minus the run without pair style)")
+    print(f"{'N':>8} {'ranks':>5} {'steps':>5} {'no pair':>8} {'lj/cut':>7} {'eq/elastic':>10} "
+          f"{'ratio':>6} {'breaks/step':>11} {'ns/break':>9} {'Neigh lj':>8} {'Neigh eq':>8}  "
+          f"neighbours/atom (lj half, eq full)")
     for n in sizes:
         ny = max(1, int(round((n / 4.0) ** 0.5)))
         nx = 2 * ny
+        steps = max(50, int(work / (2 * nx * ny)))
         for r in ranks:
             best = None
             for _ in range(2):
@@ -64,9 +73,16 @@ def pair_table(sizes, ranks, steps, out):
             ns = {k: 1e9 * v["loop"] / (v["steps"] * N) for k, v in best.items()}
             lj = ns["lj/cut"] - ns["none"]
             eq = ns["eq/elastic"] - ns["none"]
-            print(f"{N:>7} {r:>5} {ns['none']:>8.1f} {ns['lj/cut']:>8.1f} {ns['eq/elastic']:>10.1f} "
-                  f"{lj:>8.1f} {eq:>8.1f} {eq / lj:>6.2f}  {best['lj/cut']['neigh']:.0f}, "
-                  f"{best['eq/elastic']['neigh']:.0f}")
+            nb_lo = best["eq/elastic"]["breaks"]
+            nb_hi = best["eq/elastic-breaks"]["breaks"]
+            per_break = (1e9 * (best["eq/elastic-breaks"]["loop"] - best["eq/elastic"]["loop"])
+                         / max(nb_hi - nb_lo, 1.0))
+            neigh = {k: 1e9 * best[k]["t"]["Neigh"] / (best[k]["steps"] * N)
+                     for k in ("lj/cut", "eq/elastic")}
+            print(f"{N:>8} {r:>5} {steps:>5} {ns['none']:>8.1f} {lj:>7.1f} {eq:>10.1f} "
+                  f"{eq / lj:>6.2f} {nb_lo / steps:>11.1f} {per_break:>9.0f} "
+                  f"{neigh['lj/cut']:>8.1f} {neigh['eq/elastic']:>8.1f}  "
+                  f"{best['lj/cut']['neigh']:.0f}, {best['eq/elastic']['neigh']:.0f}", flush=True)
 
 
 def f_on_grid(d, grid, qs):
@@ -119,9 +135,9 @@ ROOT = HERE.parents[1]
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--part", choices=["pair", "accuracy", "all"], default="all")
-    ap.add_argument("--sizes", default="4080,16320,65280")
+    ap.add_argument("--sizes", default="4096,65536,1e6")
     ap.add_argument("--ranks", default="1,2")
-    ap.add_argument("--steps", type=int, default=400)
+    ap.add_argument("--work", type=float, default=2e7, help="contact-steps per timed run")
     ap.add_argument("--kappa", type=float, default=0.03)
     ap.add_argument("--xmax", type=float, default=2.5)
     ap.add_argument("--out", default=str(HERE / "out"))
@@ -129,8 +145,8 @@ def main():
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     if a.part in ("pair", "all"):
-        pair_table([int(v) for v in a.sizes.split(",")], [int(v) for v in a.ranks.split(",")],
-                   a.steps, out)
+        pair_table([int(float(v)) for v in a.sizes.split(",")],
+                   [int(v) for v in a.ranks.split(",")], a.work, out)
     if a.part in ("accuracy", "all"):
         accuracy_table(a.kappa, a.xmax, out)
 
