@@ -22,7 +22,12 @@ namespace {
 double read_double(const std::string &tok)
 {
   if (!utils::is_double(tok)) throw feq::SpecError("not a number");
-  return std::strtod(tok.c_str(), nullptr);    // +-inf beyond the range
+  // LAMMPS 2021's is_double() checks the characters only ('1.5.2', '1e',
+  // '+' pass): strtod must also consume the whole token
+  char *end = nullptr;
+  const double v = std::strtod(tok.c_str(), &end);    // +-inf beyond the range
+  if (end == tok.c_str() || *end != '\0') throw feq::SpecError("not a number");
+  return v;
 }
 }    // namespace
 
@@ -44,8 +49,12 @@ double EQUtil::numeric(LAMMPS *lmp, const std::string &what, const std::string &
 bigint EQUtil::bnumeric(LAMMPS *lmp, const std::string &what, const std::string &tok)
 {
   if (!utils::is_integer(tok)) lmp->error->all(FLERR, "{}: expected an integer, got '{}'", what, tok);
+  // 2021's is_integer() checks the characters only ('1-2', '+' pass)
   errno = 0;
-  const long long v = std::strtoll(tok.c_str(), nullptr, 10);
+  char *end = nullptr;
+  const long long v = std::strtoll(tok.c_str(), &end, 10);
+  if (end == tok.c_str() || *end != '\0')
+    lmp->error->all(FLERR, "{}: expected an integer, got '{}'", what, tok);
   if (errno == ERANGE || v > (long long) MAXBIGINT || v < -(long long) MAXBIGINT)
     lmp->error->all(FLERR, "{}: integer {} is out of range", what, tok);
   return (bigint) v;

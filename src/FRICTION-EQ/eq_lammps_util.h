@@ -21,7 +21,9 @@ class Domain;
 
 namespace EQUtil {
   // Numbers of the package's commands.  A token is a number when
-  // utils::is_double() accepts it; it is read with strtod, so a value
+  // utils::is_double() accepts it and strtod reads all of it (LAMMPS
+  // 2021's is_double() only checks the characters: '1.5.2' passes it);
+  // it is read with strtod, so a value
   // beyond the range of a double is +-inf in every LAMMPS version (from
   // 2026 on utils::numeric() stops with a message of its own that names
   // neither command nor keyword): the callers check the range and name

@@ -14,6 +14,7 @@
 #include "eq_me_job.h"
 
 #include <cmath>
+#include <mpi.h>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,24 @@ void EQMe::command(int narg, char **arg)
     job = feq::parse_me_job(args, EQUtil::number_parser(lmp), EQUtil::file_loader(lmp));
   } catch (const feq::SpecError &e) {
     error->all(FLERR, "eq/me {}", e.what());
+  }
+
+  // rank 0 writes the tables: it checks them before the solve, and every
+  // rank stops with its message
+  std::string bad;
+  if (comm->me == 0) {
+    try {
+      feq::check_me_outputs(job);
+    } catch (const feq::SpecError &e) {
+      bad = e.what();
+    }
+  }
+  int nbad = (int) bad.size();
+  MPI_Bcast(&nbad, 1, MPI_INT, 0, world);
+  if (nbad > 0) {
+    bad.resize(nbad);
+    MPI_Bcast(&bad[0], nbad, MPI_CHAR, 0, world);
+    error->all(FLERR, "eq/me {}", bad);
   }
 
   // every rank solves (deterministic, cheap); rank 0 writes the tables

@@ -640,3 +640,16 @@ double FixEQContacts::memory_usage()
       (double) dsv.capacity() * sizeof(double) +
       (double) (members.capacity() + blist.capacity()) * sizeof(int);
 }
+
+/* ----------------------------------------------------------------------
+   fix_modify: LAMMPS handles its own keywords (energy, virial, respa,
+   dynamic/dof) before asking the fix; this fix has none of its own.
+   Without this, LAMMPS 2021 answers 'Illegal fix_modify command'.
+------------------------------------------------------------------------- */
+
+int FixEQContacts::modify_param(int /*narg*/, char **arg)
+{
+  error->all(FLERR, "Fix_modify {}: unknown keyword '{}' for fix eq/contacts; allowed: LAMMPS' "
+                    "energy, virial, respa (fix eq/contacts has no keywords of its own)", id, arg[0]);
+  return 0;
+}

@@ -54,6 +54,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void write_restart(FILE *) override;
   void restart(char *) override;
   double memory_usage() override;
+  int modify_param(int, char **) override;
 
   // EQCoordinateSource: the contacts' stretches
   int source_dir() const override { return idir; }

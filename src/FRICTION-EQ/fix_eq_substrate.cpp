@@ -151,6 +151,23 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
   if (!drive_flag && stage0 != 0.0)
     error->all(FLERR, "Fix eq/substrate: stage needs the drive keyword (the stage holds the "
                       "driving springs)");
+  // finite numbers whose energies overflow: the energies are sums over
+  // blocks and periods of the work per period W and of K (u - X_s)^2/2;
+  // each must stay below 1e300 (sawtooth uc 1e300: W = uc^2/2 = inf)
+  const double EMAX = 1e300;
+  if (!(shape.work() <= EMAX)) {
+    if (shape.kind() == feq::SubstrateShape::SAWTOOTH)
+      error->all(FLERR, "Fix eq/substrate sawtooth: uc = {} is too large: the work per period "
+                        "uc^2/2 = {} would overflow the energies; allowed: 0 < uc <= {:.6g}",
+                 arg[5], shape.work(), std::sqrt(2.0 * EMAX));
+    error->all(FLERR, "Fix eq/substrate {}: the work per period W = int_0^uc phi du = {:.6g} would "
+                      "overflow the energies; allowed: W <= {:g}", arg[4], shape.work(), EMAX);
+  }
+  if (drive_flag && !(0.5 * kdrive * stage0 * stage0 <= EMAX))
+    error->all(FLERR, "Fix eq/substrate stage: X0 = {} is too large for drive K = {}: the "
+                      "driving-spring energy K X0^2/2 = {:.6g} would overflow the energies; "
+                      "allowed: |X0| <= {:.6g}", stage0, kdrive, 0.5 * kdrive * stage0 * stage0,
+               std::sqrt(2.0 * EMAX / kdrive));
   if (idir == 2 && domain->dimension == 2)
     error->all(FLERR, "Fix eq/substrate: dir z is not allowed in a 2d simulation; allowed: x, y");
   if (group->dynamic[igroup])

@@ -200,6 +200,34 @@ void PairEQElastic::coeff(int narg, char **arg)
   if (narg < 3) error->all(FLERR, "Incorrect args for pair eq/elastic coefficients: {}", USAGE);
   if (!allocated) allocate();
 
+  // the two type ranges are checked here, so that a bad one is named
+  // (LAMMPS' utils::bounds() answers 'Invalid range string: 0' or
+  // 'Numeric index 3 is out of bounds (1-2)'): N, *, *N, M*, M*N with
+  // 1 <= M <= N <= ntypes
+  const int ntypes = atom->ntypes;
+  for (int k = 0; k < 2; ++k) {
+    const std::string t = arg[k];
+    const size_t star = t.find('*');
+    const std::string lo = t.substr(0, star);
+    const std::string hi = star == std::string::npos ? lo : t.substr(star + 1);
+    auto number = [](const std::string &v) -> long long {    // -1: not a number
+      if (v.empty() || v.size() > 18 || v.find_first_not_of("0123456789") != std::string::npos)
+        return -1;
+      return std::stoll(v);
+    };
+    const long long nlo = lo.empty() && star != std::string::npos ? 1 : number(lo);
+    const long long nhi = hi.empty() && star != std::string::npos ? ntypes : number(hi);
+    std::string why;
+    if (nlo < 0 || nhi < 0 || (star != std::string::npos && t.find('*', star + 1) != std::string::npos))
+      why = "is neither an atom type nor a range of types";
+    else if (nlo < 1 || nhi > ntypes)
+      why = fmt::format("is out of range (the box has {} atom type{})", ntypes, ntypes > 1 ? "s" : "");
+    else if (nlo > nhi)
+      why = "is an empty range";
+    if (!why.empty())
+      error->all(FLERR, "Pair eq/elastic coefficients for {} {}: atom type '{}' {}; allowed: 1-{}, *, "
+                        "*N, M*, M*N", arg[0], arg[1], t, why, ntypes);
+  }
   int ilo, ihi, jlo, jhi;
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
@@ -567,6 +595,10 @@ void PairEQElastic::field_update(const double *qin, bool full)
     xq[i] = xi;
     q[i] = qi;
   }
+  if (changed >= 0 && !std::isfinite(x[changed][d]))    // a NaN stretch looks uncoupled
+    error->one(FLERR, "Pair eq/elastic: position of atom {} of {} is {} (numerical instability: "
+                      "check the timestep, the forces and the integrator)",
+               atom->tag[changed], source->source_name(), x[changed][d]);
   if (changed >= 0)
     error->one(FLERR, "Pair eq/elastic: atom {} of {} became {} between two neighbor list builds "
                       "without notice (internal error)", atom->tag[changed], source->source_name(),

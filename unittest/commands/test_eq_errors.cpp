@@ -12,6 +12,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <mpi.h>
@@ -250,6 +251,111 @@ TEST_F(EQContactsErrors, MasterEquationCommand)
   // a second call updates the variables
   HIDE_OUTPUT([&] { command("eq/me threshold realistic 1.0 xmax 3"); });
   EXPECT_NEAR(get_variable_value("eq_me_kstar"), 0.17425, 1e-5);
+}
+
+// found by unittest/fuzz: sizes, output files, degenerate distributions
+TEST_F(EQContactsErrors, MasterEquationSizesAndFiles)
+{
+  // thresholds ~1e300: the grid size overflowed (std::length_error)
+  TEST_FAILURE(".*ERROR: eq/me threshold uniform 0.75 1e\\+300: the stretch grid x in \\[0, "
+               "1e\\+300\\] \\(up to the largest threshold\\) would need 2e\\+302 points at dx = "
+               "0.005 \\(dx/2 of richardson\\), at most 2e\\+08; raise dx.*",
+               command("eq/me threshold uniform 0.75 1e300 xmax 2 dx 0.01"););
+  TEST_FAILURE(".*ERROR: eq/me threshold realistic 1e\\+300: the stretch grid.*raise dx.*",
+               command("eq/me threshold realistic 1e300 xmax 2 dx 0.01"););
+  TEST_FAILURE(".*ERROR: eq/me threshold gaussian 1 1e\\+300 \\(truncated to x > 0\\): the "
+               "stretch grid.*",
+               command("eq/me threshold gaussian 1.0 1e300 xmax 2 dx 0.01"););
+  // xmax 1e300: no 300-digit number
+  TEST_FAILURE(".*ERROR: eq/me xmax: xmax/dx = 1e\\+302 steps \\(xmax = 1e\\+300, dx = 0.01\\), "
+               "at most 1e\\+08 with richardson \\(2e\\+08 without\\); lower xmax or raise dx.*",
+               command("eq/me threshold uniform 0.75 1.25 xmax 1e300 dx 0.01"););
+  // exact: lo -> 0 runs (the renewal terms are cut); lo and hi both tiny
+  // would need ~xmax/lo terms
+  TEST_FAILURE(".*ERROR: eq/me exact: lo is too small: the renewal sums need more than 2000 terms "
+               "per point \\(lo = 1e-300, hi = 2e-300, xmax = 2\\).*",
+               command("eq/me threshold uniform 1e-300 2e-300 xmax 2 dx 0.01 exact eq_ex.dat"););
+  HIDE_OUTPUT([&] {
+    command("eq/me threshold uniform 1e-300 1.25 xmax 2 dx 0.01 exact eq_ex.dat");
+  });
+  std::remove("eq_ex.dat");
+  // output files: the keyword is named, before the solve, on every rank
+  for (const char *kw : {"force", "steady", "summary", "exact"}) {
+    TEST_FAILURE(std::string(".*ERROR: eq/me ") + kw +
+                     ": cannot write file '/nonexistent/dir/out.dat' \\(No such file or "
+                     "directory\\).*",
+                 command(std::string("eq/me threshold uniform 0.75 1.25 xmax 2 dx 0.01 ") + kw +
+                         " /nonexistent/dir/out.dat"););
+    TEST_FAILURE(std::string(".*ERROR: eq/me ") + kw + ": cannot write file '.' \\(Is a directory\\).*",
+                 command(std::string("eq/me threshold uniform 0.75 1.25 xmax 2 dx 0.01 ") + kw +
+                         " ."););
+  }
+  TEST_FAILURE(".*ERROR: eq/me snapshot: cannot write file '/nonexistent/q.dat'.*",
+               command("eq/me threshold uniform 0.75 1.25 xmax 2 dx 0.01 snapshot 1.0 "
+                       "/nonexistent/q.dat"););
+  TEST_FAILURE(".*ERROR: eq/me substrate: cannot write file '/nonexistent/s.table'.*",
+               command("eq/me threshold uniform 0.75 1.25 xmax 2 dx 0.01 substrate "
+                       "/nonexistent/s.table B 1.0"););
+  // a missing file name does not take the next keyword as the name
+  TEST_FAILURE(".*ERROR: eq/me force: missing file name before the keyword 'steady'.*",
+               command("eq/me threshold uniform 0.75 1.25 xmax 2 dx 0.01 force steady qs.dat"););
+  TEST_FAILURE(".*ERROR: eq/me summary: missing file name before the keyword 'substrate'.*",
+               command("eq/me threshold uniform 0.75 1.25 xmax 2 dx 0.01 summary substrate "
+                       "me.table B 1.0"););
+  // reform gaussian 0.1 1e-300: F_k was -nan (the variable then missing)
+  HIDE_OUTPUT([&] {
+    command("eq/me threshold realistic 1.0 reform gaussian 0.1 1e-300 xmax 2 dx 0.01");
+  });
+  const double narrow = get_variable_value("eq_me_kinetic_force");
+  HIDE_OUTPUT([&] { command("eq/me threshold realistic 1.0 reform delta 0.1 xmax 2 dx 0.01"); });
+  EXPECT_DOUBLE_EQ(narrow, get_variable_value("eq_me_kinetic_force"));
+  EXPECT_TRUE(std::isfinite(narrow));
+}
+
+// found by unittest/fuzz: tables and numbers that were accepted silently,
+// fix_modify on fix eq/contacts
+TEST_F(EQContactsErrors, TablesNumbersAndFixModify)
+{
+  {
+    std::ofstream out("eq_n.table");
+    const char *pts = "\n1 0.5 0.0\n2 0.8 2.0\n3 1.0 1.0\n4 1.3 0.0\n";
+    out << "REAL\nN 2.5\n" << pts << "\nSMALL\nN 3\n" << pts << "\nFLAG\nN 4 iso\n" << pts;
+  }
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold table: table file 'eq_n.table' line 2: expected "
+               "'N <count>' with count >= 2 after keyword 'REAL' \\(got 'N 2.5': not an integer\\).*",
+               fix("1.0 5 threshold table eq_n.table REAL"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold table: table file 'eq_n.table' section 'SMALL': "
+               "more points than 'N 3' \\(line 10\\) says: point 4 on line 15; the point count "
+               "must equal N.*",
+               fix("1.0 5 threshold table eq_n.table SMALL"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold table: table file 'eq_n.table' line 18: unknown "
+               "flag 'iso' after 'N 4' \\(threshold and substrate tables take no flags\\).*",
+               fix("1.0 5 threshold table eq_n.table FLAG"););
+  TEST_FAILURE(".*ERROR: eq/me threshold table: table file 'eq_n.table' section 'SMALL': more "
+               "points than 'N 3'.*",
+               command("eq/me threshold table eq_n.table SMALL xmax 2 dx 0.01"););
+  std::remove("eq_n.table");
+  // LAMMPS 2021's utils::is_double() accepts '1.5.2' and is_integer() '1-2'
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: kc: expected a number, got '1.5.2'.*",
+               fix("1.5.2 5 threshold uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts threshold uniform: expected a number for hi, got "
+               "'1.2.5'.*",
+               fix("1.0 5 threshold uniform 0.75 1.2.5"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: kc: expected a number, got 'e'.*",
+               fix("e 5 threshold uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: seed: expected an integer, got '1-2'.*",
+               fix("1.0 1-2 threshold uniform 0.75 1.25"););
+  TEST_FAILURE(".*ERROR: eq/me xmax: expected a number, got '1.5.2'.*",
+               command("eq/me threshold uniform 0.75 1.25 xmax 1.5.2"););
+  // fix eq/contacts has no fix_modify keywords of its own (2021 said only
+  // 'Illegal fix_modify command')
+  HIDE_OUTPUT([&] {
+    fix("1.0 5 threshold uniform 0.75 1.25");
+    command("fix_modify c energy yes");
+  });
+  TEST_FAILURE(".*ERROR: Fix_modify c: unknown keyword 'kc' for fix eq/contacts; allowed: LAMMPS' "
+               "energy, virial, respa \\(fix eq/contacts has no keywords of its own\\).*",
+               command("fix_modify c kc all 0.5"););
 }
 
 int main(int argc, char **argv)

@@ -96,8 +96,31 @@ TEST_F(EQInteractErrors, PairStyleAndCoeffs)
                command("pair_coeff 1 1 table " + KTABLE + " NOPE"););
   TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1 1: table: wrong number of values.*",
                command("pair_coeff 1 1 table " + KTABLE););
-  TEST_FAILURE(".*ERROR: Numeric index 3 is out of bounds \\(1-2\\).*",
+  // type ranges are checked by the pair style (not by LAMMPS' utils::bounds,
+  // whose message named neither the command nor the type)
+  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 3 3: atom type '3' is out of range "
+               "\\(the box has 2 atom types\\); allowed: 1-2, \\*, \\*N, M\\*, M\\*N.*",
                command("pair_coeff 3 3 0.1 3.0"););
+  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 0 0: atom type '0' is out of range.*",
+               command("pair_coeff 0 0 0.1 3.0"););
+  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1 a: atom type 'a' is neither an atom "
+               "type nor a range of types; allowed: 1-2.*",
+               command("pair_coeff 1 a 0.1 3.0"););
+  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1\\*3 1: atom type '1\\*3' is out of "
+               "range.*",
+               command("pair_coeff 1*3 1 0.1 3.0"););
+  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 2\\*1 1: atom type '2\\*1' is an empty "
+               "range.*",
+               command("pair_coeff 2*1 1 0.1 3.0"););
+  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for -1 1: atom type '-1' is neither.*",
+               command("pair_coeff -1 1 0.1 3.0"););
+  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1\\*\\*2 1: atom type '1\\*\\*2' is "
+               "neither.*",
+               command("pair_coeff 1**2 1 0.1 3.0"););
+  HIDE_OUTPUT([&] {
+    command("pair_coeff 2* *2 0.1 3.0");
+    command("pair_coeff *1 1* 0.1 3.0");
+  });
 }
 
 TEST_F(EQInteractErrors, BadTables)

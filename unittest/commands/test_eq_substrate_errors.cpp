@@ -14,6 +14,7 @@
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <mpi.h>
@@ -145,6 +146,50 @@ TEST_F(EQSubstrateErrors, NonFiniteNumbers)
                command("fix_modify s kc left 1e400"););
   TEST_FAILURE(".*ERROR: Fix_modify s velocity: v must be finite \\(got -1e400\\).*",
                command("fix_modify s velocity -1e400"););
+}
+
+// found by unittest/fuzz: finite numbers whose energies overflowed (NaN
+// and inf in pe, f_sub), tables accepted silently, '1-2' as a seed
+TEST_F(EQSubstrateErrors, EnergiesStayFinite)
+{
+  TEST_FAILURE(".*ERROR: Fix eq/substrate sawtooth: uc = 1e300 is too large: the work per period "
+               "uc\\^2/2 = inf would overflow the energies; allowed: 0 < uc <= 1.41421e\\+150.*",
+               fix("1.0 sawtooth 1e300"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate stage: X0 = 1e\\+300 is too large for drive K = 0.07: the "
+               "driving-spring energy K X0\\^2/2 = inf would overflow the energies; allowed: \\|X0\\| "
+               "<= 5.34522e\\+150.*",
+               fix("1.0 sawtooth 1.0 drive 0.07 1e-4 stage 1e300"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate stage: X0 = 12 is too large for drive K = 1e\\+300.*",
+               fix("1.0 sawtooth 1.0 drive 1e300 1e-4 stage 12"););
+  // (2026: 'seed must be a positive integer', 2021: 'seed: expected an integer')
+  TEST_FAILURE(".*ERROR: Fix eq/substrate disorder: seed.*'1-2'.*",
+               fix("1.0 sawtooth 1.0 disorder constant 1-2"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate sawtooth uc: expected a number, got '1.5.2'.*",
+               fix("1.0 sawtooth 1.5.2"););
+  // the largest allowed values run, with finite energies
+  HIDE_OUTPUT([&] {
+    fix("1.0 sawtooth 1e150 drive 0.07 1e-4 stage 1e150");
+    command("fix_modify s energy yes");
+    command("run 0 post no");
+  });
+  const double e = lmp->modify->fix[lmp->modify->find_fix("s")]->compute_scalar();
+  EXPECT_TRUE(std::isfinite(e));
+  {
+    std::ofstream out("eq_sub_n.table");
+    const char *pts = "\n1 0.0 0.0\n2 0.5 1.0\n3 1.0 0.8\n4 1.5 0.5\n";
+    out << "REAL\nN 2.5\n" << pts << "\nSMALL\nN 3\n" << pts << "\nFLAG\nN 4 iso\n" << pts;
+  }
+  HIDE_OUTPUT([&] { command("unfix s"); });
+  TEST_FAILURE(".*ERROR: Fix eq/substrate table: table file 'eq_sub_n.table' line 2: expected 'N "
+               "<count>' with count >= 2 after keyword 'REAL' \\(got 'N 2.5': not an integer\\).*",
+               fix("1.0 table eq_sub_n.table REAL"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate table: table file 'eq_sub_n.table' section 'SMALL': more "
+               "points than 'N 3' \\(line 10\\) says: point 4 on line 15.*",
+               fix("1.0 table eq_sub_n.table SMALL"););
+  TEST_FAILURE(".*ERROR: Fix eq/substrate table: table file 'eq_sub_n.table' line 18: unknown flag "
+               "'iso' after 'N 4'.*",
+               fix("1.0 table eq_sub_n.table FLAG"););
+  std::remove("eq_sub_n.table");
 }
 
 TEST_F(EQSubstrateErrors, Tables)

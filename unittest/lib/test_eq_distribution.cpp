@@ -11,6 +11,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
 using namespace feq;
 using ::testing::HasSubstr;
@@ -324,6 +325,67 @@ TEST(Tables, ErrorsNameFileKeywordAndLine)
   read_table_file(bad, "NEG", x, p);
   EXPECT_THROW(make_table(x, p, "neg"), SpecError);
   std::remove(bad.c_str());
+}
+
+// The 'N n' line and the point count (fuzz: 'N 2.5' was read as N 2, more
+// points than N were dropped, a flag after N was ignored)
+TEST(Tables, CountLineAndPointCountAreExact)
+{
+  const std::string pts = "\n1 0.5 0.0\n2 0.8 2.0\n3 1.0 1.0\n4 1.3 0.0\n";
+  auto error = [](const std::string &text, const std::string &key = "BAD") -> std::string {
+    std::vector<double> x, p;
+    try {
+      read_table_text(text, "t.table", key, x, p);
+    } catch (const SpecError &e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_EQ(error("# t\nBAD\nN 2.5\n" + pts),
+            "table file 't.table' line 3: expected 'N <count>' with count >= 2 after keyword "
+            "'BAD' (got 'N 2.5': not an integer)");
+  EXPECT_THAT(error("BAD\nN 4x\n" + pts), HasSubstr("(got 'N 4x': not an integer)"));
+  EXPECT_THAT(error("BAD\nN 1\n" + pts), HasSubstr("count >= 2 after keyword 'BAD' (got 'N 1')"));
+  EXPECT_EQ(error("# t\nBAD\nN 3\n" + pts),
+            "table file 't.table' section 'BAD': more points than 'N 3' (line 3) says: point 4 "
+            "on line 8; the point count must equal N");
+  EXPECT_EQ(error("# t\nBAD\nN 4 iso\n" + pts),
+            "table file 't.table' line 3: unknown flag 'iso' after 'N 4' (threshold and "
+            "substrate tables take no flags)");
+  EXPECT_THAT(error("BAD\nN 4 aniso\n" + pts), HasSubstr("unknown flag 'aniso'"));
+  // exact counts pass, with comments and blank lines after the points and
+  // the next section right behind
+  std::vector<double> x, p;
+  read_table_text("BAD\nN 4\n" + pts + "\n# next\n\nOTHER\nN 2\n\n1 0 1\n2 1 1\n", "t", "BAD",
+                  x, p);
+  EXPECT_EQ(x.size(), 4u);
+  read_table_text("BAD\nN 4\n" + pts + "\n# next\n\nOTHER\nN 2\n\n1 0 1\n2 1 1\n", "t",
+                  "OTHER", x, p);
+  EXPECT_EQ(x.size(), 2u);
+  EXPECT_EQ(error("BAD\nN 4\n" + pts + "# end\n"), "no error");
+}
+
+// Every shipped threshold table has exactly the points its N line says.
+TEST(Tables, ShippedThresholdTablesAreExact)
+{
+  const std::string path = std::string(FEQ_SOURCE_DIR) + "/potentials/eq_thresholds.table";
+  std::ifstream in(path);
+  std::string line;
+  int sections = 0;
+  std::vector<std::string> keys;
+  std::string prev;
+  while (std::getline(in, line)) {
+    if (line.rfind("N ", 0) == 0 && !prev.empty()) keys.push_back(prev);
+    std::istringstream ws(line);
+    std::string w;
+    if (ws >> w && w[0] != '#') prev = w;
+  }
+  for (const auto &k : keys) {
+    std::vector<double> x, p;
+    EXPECT_NO_THROW(read_table_file(path, k, x, p)) << k;
+    ++sections;
+  }
+  EXPECT_GE(sections, 2);
 }
 
 /* ---------------------------------------------------------------------- */

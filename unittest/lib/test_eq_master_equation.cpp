@@ -2,15 +2,22 @@
 // closed forms, conservation laws and the analytic stationary solution.
 #include "eq_distribution.h"
 #include "eq_master_equation.h"
+#include "eq_me_job.h"
 #include "eq_renewal_exact.h"
 
+#include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <limits>
+#include <sstream>
 
 using namespace feq;
+using ::testing::HasSubstr;
+using ::testing::Not;
 
 namespace {
 
@@ -282,4 +289,162 @@ TEST(Tables, TabulatedUniformEqualsAnalytic)
   const MEResult a = solve_master_equation(make_uniform(0.75, 1.25), make_delta(0.0), o);
   const MEResult t = solve_master_equation(make_table(x, p, "u"), make_delta(0.0), o);
   for (size_t k = 0; k < a.F.size(); ++k) EXPECT_NEAR(a.F[k], t.F[k], 1e-13);
+}
+
+/* ----------------------------------------------------------------------
+   Sizes, costs and degenerate inputs (found by unittest/fuzz)
+------------------------------------------------------------------------- */
+
+namespace {
+std::string job_error(const std::string &line)
+{
+  std::vector<std::string> args;
+  std::istringstream in(line);
+  std::string w;
+  while (in >> w) args.push_back(w);
+  try {
+    const MEJob job = parse_me_job(args, parse_number);
+    check_me_outputs(job);
+  } catch (const SpecError &e) {
+    return e.what();
+  }
+  return "no error";
+}
+}    // namespace
+
+// thresholds ~1e300 made the grid size overflow (a negative long, then
+// std::length_error from vector::resize): a SpecError before allocating
+TEST(MasterEquation, HugeGridIsASpecErrorBeforeAllocation)
+{
+  try {
+    MasterEquation me(make_uniform(0.75, 1e300), make_delta(0.0), 1e-3);
+    FAIL();
+  } catch (const SpecError &e) {
+    EXPECT_THAT(e.what(), HasSubstr("master equation: the stretch grid x in [0, 1e+300] would need "
+                                    "1e+303 points at dx = 0.001 (at most 2e+08); raise dx"));
+  }
+  EXPECT_THROW(MasterEquation(make_realistic(1e300), make_delta(0.0), 1e-3), SpecError);
+  EXPECT_THROW(MasterEquation(make_gaussian(1.0, 1e300, 0.0), make_delta(0.0), 1e-3), SpecError);
+  MEOptions o;
+  o.dx = 1e-2;
+  o.Xmax = 1e300;
+  try {
+    solve_master_equation(make_uniform(0.75, 1.25), make_delta(0.0), o);
+    FAIL();
+  } catch (const SpecError &e) {
+    EXPECT_THAT(e.what(), HasSubstr("xmax/dx = 1e+302 steps (at most 2e+08)"));
+  }
+}
+
+// eq-me / eq/me check every size at parse time and name the keyword
+TEST(MEJob, SizesAreCheckedWithTheKeyword)
+{
+  EXPECT_EQ(job_error("threshold uniform 0.75 1e300 xmax 2 dx 0.01"),
+            "threshold uniform 0.75 1e+300: the stretch grid x in [0, 1e+300] (up to the largest "
+            "threshold) would need 2e+302 points at dx = 0.005 (dx/2 of richardson), at most "
+            "2e+08; raise dx");
+  EXPECT_THAT(job_error("threshold gaussian 1e300 0.2 xmax 2 dx 0.01"),
+              HasSubstr("(up to the 1e-17 tail of the thresholds) would need"));
+  EXPECT_THAT(job_error("threshold realistic 1e30 xmax 2 dx 0.01 richardson no"),
+              HasSubstr("threshold realistic 1e+30: the stretch grid x in [0, 6.55183e+30]"));
+  EXPECT_EQ(job_error("threshold uniform 0.75 1.25 xmax 1e300 dx 0.01"),
+            "xmax: xmax/dx = 1e+302 steps (xmax = 1e+300, dx = 0.01), at most 1e+08 with "
+            "richardson (2e+08 without); lower xmax or raise dx");
+  EXPECT_EQ(job_error("threshold uniform 0.75 1.25 xmax 1e300 dx 0.01 crossing step"),
+            "xmax: xmax/dx = 1e+302 steps (xmax = 1e+300, dx = 0.01), at most 2e+08; lower xmax "
+            "or raise dx");
+  EXPECT_THAT(job_error("threshold uniform 0.75 1.25 xmax 2 dx 1e-300"),
+              HasSubstr("xmax: xmax/dx = 2e+300 steps"));
+  EXPECT_EQ(job_error("threshold uniform 0.75 1.25 xmax 1e-300 dx 0.01"),
+            "xmax: must be at least dx (xmax = 1e-300, dx = 0.010000)");
+  EXPECT_EQ(job_error("threshold uniform 0.75 1.25 xmax 2 snapshot 1e300 q.dat"),
+            "snapshot: X = 1e+300 outside [0, xmax]");
+  // exact: lo -> 0 is cheap now (terms cut), lo and hi - lo both small is not
+  EXPECT_EQ(job_error("threshold uniform 1e-300 1.25 xmax 2 dx 0.01 exact ex.dat"), "no error");
+  EXPECT_THAT(job_error("threshold uniform 1e-300 2e-300 xmax 2 dx 0.01 exact ex.dat"),
+              HasSubstr("exact: lo is too small: the renewal sums need more than 2000 terms per "
+                        "point (lo = 1e-300, hi = 2e-300, xmax = 2)"));
+  EXPECT_THAT(job_error("threshold uniform 0.01 0.011 xmax 2 dx 0.01 exact ex.dat"),
+              HasSubstr("exact: the Irwin-Hall sums of the renewal solution lose"));
+  EXPECT_THAT(job_error("threshold uniform 1e-300 1.25 xmax 20 dx 0.01 exact ex.dat"),
+              HasSubstr("exact: the renewal solution would take ~"));
+}
+
+// output files: a bad one is named with its keyword before the solve, a
+// missing name does not take the next keyword
+TEST(MEJob, OutputFilesNameTheirKeyword)
+{
+  const std::string good = "threshold uniform 0.75 1.25 xmax 2 dx 0.01 ";
+  for (const char *kw : {"force", "steady", "summary", "exact"}) {
+    EXPECT_EQ(job_error(good + kw + " /nonexistent/dir/out.dat"),
+              std::string(kw) + ": cannot write file '/nonexistent/dir/out.dat' (No such file or "
+                                "directory)");
+    EXPECT_EQ(job_error(good + kw + " ."),
+              std::string(kw) + ": cannot write file '.' (Is a directory)");
+  }
+  EXPECT_THAT(job_error(good + "snapshot 1.0 /nonexistent/q.dat"),
+              HasSubstr("snapshot: cannot write file '/nonexistent/q.dat'"));
+  EXPECT_THAT(job_error(good + "substrate /nonexistent/s.table B 1.0"),
+              HasSubstr("substrate: cannot write file '/nonexistent/s.table'"));
+  EXPECT_EQ(job_error(good + "force steady qs.dat"),
+            "force: missing file name before the keyword 'steady'");
+  EXPECT_EQ(job_error(good + "snapshot 1.0 summary s.dat"),
+            "snapshot: missing file name before the keyword 'summary'");
+  EXPECT_EQ(job_error(good + "force"), "force: missing value");
+  // the check leaves nothing behind
+  EXPECT_EQ(job_error(good + "force feq_probe_test.dat"), "no error");
+  EXPECT_FALSE(std::ifstream("feq_probe_test.dat").good());
+}
+
+// reform gaussian 0.1 1e-300: the stationary quadrature over [r_lo, r_hi]
+// collapsed (0/0): the summary printed F_k = -nan, Gamma_s = inf
+TEST(MEJob, NarrowReformHasAFiniteSteadyState)
+{
+  const std::vector<std::string> narrow{"threshold", "realistic", "1.0", "reform", "gaussian", "0.1",
+                                        "1e-300", "xmax", "2", "dx", "0.01"};
+  const std::vector<std::string> point{"threshold", "realistic", "1.0", "reform", "delta", "0.1",
+                                       "xmax", "2", "dx", "0.01"};
+  const MEReport a = run_me_job(parse_me_job(narrow, parse_number), false);
+  const MEReport b = run_me_job(parse_me_job(point, parse_number), false);
+  EXPECT_TRUE(std::isfinite(a.values.at("kinetic_force")));
+  EXPECT_DOUBLE_EQ(a.values.at("kinetic_force"), b.values.at("kinetic_force"));
+  EXPECT_DOUBLE_EQ(a.values.at("steady_rate"), b.values.at("steady_rate"));
+  EXPECT_THAT(a.text, HasSubstr("stationary solution takes it as delta 0.1"));
+  EXPECT_THAT(a.text, Not(HasSubstr("nan")));
+}
+
+// lo -> 0: the renewal sums are cut where their terms vanish; for
+// lifetimes uniform on (0, 1] the renewal density is e^X on (0, 1) and
+// e^X - X e^(X-1) on (1, 2) (u = 1 + int_0^X u below 1, int_{X-1}^X u above)
+TEST(RenewalExact, TinyLoIsCutAndExact)
+{
+  const RenewalUniform ex(1e-300, 1.0);
+  EXPECT_NEAR(ex.rate(0.5), std::exp(0.5), 1e-13);
+  EXPECT_NEAR(ex.rate(1.5), std::exp(1.5) - 1.5 * std::exp(0.5), 1e-12);
+  EXPECT_LT(ex.terms(2.0), 40);
+  EXPECT_LT(ex.lost_digits(2.0), 1.0);
+  // continuous in lo: the cut changes nothing that double precision sees
+  const RenewalUniform near(1e-9, 1.0);
+  for (double X : {0.3, 1.2, 1.9}) EXPECT_NEAR(ex.mean_stretch(X), near.mean_stretch(X), 1e-8) << X;
+  // the reference case needs all its terms, none is cut
+  const RenewalUniform ref(0.75, 1.25);
+  EXPECT_EQ(ref.terms(8.0), 10);
+}
+
+// substrate uc below the grid spacing: the table holds X = 0 and uc (the
+// interpolation read F[-1] before, found by AddressSanitizer)
+TEST(MEJob, SubstrateTableBelowOneStep)
+{
+  const std::vector<std::string> args{"threshold", "uniform", "0.75", "1.25", "xmax", "2", "dx",
+                                      "0.01", "substrate", "feq_tiny_uc.table", "B", "1e-300"};
+  const MEReport rep = run_me_job(parse_me_job(args, parse_number));
+  EXPECT_THAT(rep.text, HasSubstr("phi(u) on [0, 1e-300], 2 points"));
+  std::vector<double> u, phi;
+  read_table_file("feq_tiny_uc.table", "B", u, phi);
+  ASSERT_EQ(u.size(), 2u);
+  EXPECT_EQ(u[0], 0.0);
+  EXPECT_EQ(u[1], 1e-300);
+  EXPECT_EQ(phi[0], 0.0);
+  EXPECT_NEAR(phi[1], 0.0, 1e-300);
+  std::remove("feq_tiny_uc.table");
 }

@@ -614,18 +614,34 @@ void read_table_text(const std::string &text, const std::string &path, const std
   if (!found) throw SpecError("keyword '" + keyword + "' not found in table file '" + path + "'");
   auto where = [&]() { return "table file '" + path + "' line " + std::to_string(lineno); };
 
+  // an integer written as such ('2.5', '4x' and '' are not)
+  auto integer = [](const std::string &tok, long &v) {
+    if (tok.empty()) return false;
+    errno = 0;
+    char *end = nullptr;
+    v = std::strtol(tok.c_str(), &end, 10);
+    return end != tok.c_str() && *end == '\0' && errno != ERANGE;
+  };
   long n = -1;
   while (std::getline(in, line)) {
     ++lineno;
     std::istringstream ws(line);
-    std::string word;
+    std::string word, count, flag;
     if (!(ws >> word) || word[0] == '#') continue;
-    if (word != "N" || !(ws >> n) || n < 2)
+    if (word != "N" || !(ws >> count) || !integer(count, n) || n < 2) {
+      const std::string got = (word == "N" && !count.empty()) ? " (got 'N " + count + "'" +
+              (integer(count, n) ? "" : ": not an integer") + ")" : "";
       throw SpecError(where() + ": expected 'N <count>' with count >= 2 after keyword '" + keyword +
-                      "'");
+                      "'" + got);
+    }
+    // these tables have no flags ('N n aniso' is for kernel tables)
+    if (ws >> flag)
+      throw SpecError(where() + ": unknown flag '" + flag + "' after 'N " + count +
+                      "' (threshold and substrate tables take no flags)");
     break;
   }
   if (n < 0) throw SpecError("table file '" + path + "': missing 'N <count>' after '" + keyword + "'");
+  const int nline = lineno;
   x.clear();
   p.clear();
   while ((long) x.size() < n && std::getline(in, line)) {
@@ -634,9 +650,8 @@ void read_table_text(const std::string &text, const std::string &path, const std
     std::string a, b, c, extra;
     if (!(ws >> a)) continue;
     if (a[0] == '#') continue;
-    char *end = nullptr;
-    const long idx = std::strtol(a.c_str(), &end, 10);
-    if (*end != '\0') break;    // the next section begins: too few points
+    long idx;
+    if (!integer(a, idx)) break;    // the next section begins: too few points
     if (!(ws >> b >> c) || (ws >> extra))
       throw SpecError(where() + ": expected 'index x P(x)'");
     if (idx != (long) x.size() + 1)
@@ -655,6 +670,21 @@ void read_table_text(const std::string &text, const std::string &path, const std
   if ((long) x.size() < n)
     throw SpecError("table file '" + path + "' section '" + keyword + "': expected " +
                     std::to_string(n) + " points, found " + std::to_string(x.size()));
+  // a point line after the last one: the section has more points than its
+  // 'N n' line says (they would be dropped silently)
+  while (std::getline(in, line)) {
+    ++lineno;
+    std::istringstream ws(line);
+    std::string a;
+    if (!(ws >> a) || a[0] == '#') continue;
+    long idx;
+    if (integer(a, idx))
+      throw SpecError("table file '" + path + "' section '" + keyword + "': more points than " +
+                      "'N " + std::to_string(n) + "' (line " + std::to_string(nline) +
+                      ") says: point " + a + " on line " + std::to_string(lineno) +
+                      "; the point count must equal N");
+    break;    // the next section
+  }
 }
 
 /* ---------------------------------------------------------------------- */

@@ -136,6 +136,20 @@ Kernel read_kernel_table(const std::string &text, const std::string &path,
   if ((long) k.r.size() < n)
     throw SpecError("table file '" + path + "' section '" + keyword + "': expected " +
                     std::to_string(n) + " points, found " + std::to_string(k.r.size()));
+  // a point line after the last one: the section has more points than its
+  // 'N n' line says (they would be dropped silently)
+  while (std::getline(in, line)) {
+    ++lineno;
+    std::istringstream ws(line);
+    std::string a;
+    if (!(ws >> a) || a[0] == '#') continue;
+    char *end = nullptr;
+    std::strtol(a.c_str(), &end, 10);
+    if (end != a.c_str() && *end == '\0')
+      throw SpecError("table file '" + path + "' section '" + keyword + "': more points than 'N " +
+                      std::to_string(n) + "' says (" + where() + ")");
+    break;    // the next section's keyword
+  }
   return k;
 }
 

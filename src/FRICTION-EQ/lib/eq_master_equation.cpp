@@ -6,13 +6,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
 
 namespace feq {
 
 namespace {
 
 const double INF = std::numeric_limits<double>::infinity();
+
+// size limits (eq_me_job.cpp checks the same before any allocation, with
+// the keyword's name): 2e8 grid points are 8 GB of solver arrays, 2e8
+// steps 9.6 GB of F(X) table
+const double ME_MAX_GRID_POINTS = 2e8;
+const double ME_MAX_STEPS = 2e8;
+
+std::string fmtg(double v)
+{
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.6g", v);
+  return buf;
+}
 
 struct GaussLegendre {
   std::vector<double> t, w;    // nodes on [-1,1], weights
@@ -92,10 +107,17 @@ MasterEquation::MasterEquation(DistributionPtr Pc_, DistributionPtr R_, double d
   double top = Pc->upper();
   if (!std::isfinite(top)) top = Pc->isf(tail);
   top = std::max(top, std::max(rhi, -rlo)) + 2.0 * dx;
-  const long jneg = std::max(0L, (long) std::ceil(-std::min(rlo, 0.0) / dx)) + 2;
-  const long jpos = (long) std::ceil(top / dx) + 1;
+  // the size in floating point first: a range of 1e300 must not overflow
+  // the integer conversion (and pass as a negative size)
+  const double jneg_d = std::ceil(-std::min(rlo, 0.0) / dx) + 2.0;
+  const double jpos_d = std::ceil(top / dx) + 1.0;
+  if (!(jneg_d + jpos_d + 1.0 <= ME_MAX_GRID_POINTS))
+    throw SpecError("master equation: the stretch grid x in [" + fmtg(std::min(rlo, 0.0)) + ", " +
+                    fmtg(top) + "] would need " + fmtg(jneg_d + jpos_d + 1.0) + " points at dx = " +
+                    fmtg(dx) + " (at most " + fmtg(ME_MAX_GRID_POINTS) + "); raise dx");
+  const long jneg = (long) jneg_d;
+  const long jpos = (long) jpos_d;
   const long n = jneg + jpos + 1;
-  if (n > 200000000) throw SpecError("master equation: grid too large; increase dx");
   x.resize(n);
   for (long j = 0; j < n; ++j) x[j] = double(j - jneg) * dx;
 
@@ -338,6 +360,9 @@ std::vector<double> MasterEquation::density() const
 MEResult solve_master_equation(DistributionPtr Pc, DistributionPtr R, const MEOptions &opt)
 {
   if (!(opt.Xmax >= 0.0)) throw SpecError("master equation: xmax must be >= 0");
+  if (!(opt.Xmax / opt.dx <= ME_MAX_STEPS))
+    throw SpecError("master equation: xmax/dx = " + fmtg(opt.Xmax / opt.dx) + " steps (at most " +
+                    fmtg(ME_MAX_STEPS) + "); lower xmax or raise dx");
   MasterEquation me(Pc, R, opt.dx, 1e-17, opt.crossing);
   me.start(opt.start);
   MEResult r;

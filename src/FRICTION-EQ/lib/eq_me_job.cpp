@@ -9,9 +9,11 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdarg>
+#include <cerrno>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -20,13 +22,40 @@ namespace feq {
 
 namespace {
 
-std::ofstream open_out(const std::string &path)
+std::ofstream open_out(const std::string &kw, const std::string &path)
 {
   std::ofstream out(path);
-  if (!out) throw SpecError("cannot write file '" + path + "'");
+  if (!out) throw SpecError(kw + ": cannot write file '" + path + "'");
   out << std::setprecision(12);
   return out;
 }
+
+// a number in a message: as std::to_string for everyday values (the
+// messages' established form), %g for the very large and very small
+std::string num(double v)
+{
+  const double a = std::fabs(v);
+  if (v == 0.0 || (a >= 1e-4 && a < 1e15)) return std::to_string(v);
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%g", v);
+  return buf;
+}
+
+std::string fmtg(double v)
+{
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.6g", v);
+  return buf;
+}
+
+// size limits of the solver (lib/eq_master_equation.cpp stops at the same
+// ones): grid points of the stretch grid, slider steps
+const double MAX_GRID_POINTS = 2e8;
+const double MAX_STEPS = 2e8;
+// the exact renewal solution: Irwin-Hall terms for the whole table
+// (RenewalUniform::work(); measured 0.17-0.3 us each: ~30 s)
+const double EXACT_MAX_WORK = 1e8;
+const double EXACT_SECONDS_PER_WORK = 3e-7;
 
 std::string format(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 std::string format(const char *fmt, ...)
@@ -47,7 +76,113 @@ bool exact_applies(const MEJob &job)
       job.opt.start == MEStart::RELAXED && job.opt.crossing == Crossing::EXACT && Pc.lower() > 0.0;
 }
 
+bool is_keyword(const std::string &tok)
+{
+  static const char *const kws[] = {"threshold", "reform",   "stiffness", "dir",      "xmax",
+                                    "dx",        "start",    "crossing",  "richardson", "force",
+                                    "steady",    "snapshot", "summary",   "exact",    "substrate"};
+  for (const char *k : kws)
+    if (tok == k) return true;
+  return false;
+}
+
+// the stretch grid of the solver (MasterEquation): from the most negative
+// re-forming stretch to the largest threshold (or its 1e-17 tail)
+void check_grid(const MEJob &job)
+{
+  const Distribution &Pc = *job.threshold.dist;
+  double rlo = 0.0, rhi = 0.0;
+  if (job.reform.dist) {
+    const Distribution &R = *job.reform.dist;
+    rlo = R.lower();
+    rhi = R.upper();
+    if (!std::isfinite(rlo)) rlo = R.quantile(1e-17);
+    if (!std::isfinite(rhi)) rhi = R.isf(1e-17);
+  }
+  double top = Pc.upper();
+  const bool bounded = std::isfinite(top);
+  if (!bounded) top = Pc.isf(1e-17);
+  // Richardson solves at dx/2 too
+  const double h = job.richardson ? 0.5 * job.opt.dx : job.opt.dx;
+  const double hi = std::max(top, std::max(rhi, -rlo)), lo = std::min(rlo, 0.0);
+  const double points = std::ceil(-lo / h) + 2.0 + std::ceil((hi + 2.0 * h) / h) + 2.0;
+  if (points <= MAX_GRID_POINTS) return;
+  const bool by_threshold = !(std::max(rhi, -rlo) > top);
+  const std::string who = by_threshold ? "threshold " + job.threshold.text
+                                       : "reform " + job.reform.text;
+  const std::string what = by_threshold
+      ? (bounded ? "up to the largest threshold" : "up to the 1e-17 tail of the thresholds")
+      : "over the re-forming stretches";
+  throw SpecError(who + ": the stretch grid x in [" + fmtg(lo) + ", " + fmtg(hi) + "] (" + what +
+                  ") would need " + fmtg(points) + " points at dx = " + fmtg(h) +
+                  (job.richardson ? " (dx/2 of richardson)" : "") + ", at most " +
+                  fmtg(MAX_GRID_POINTS) + "; raise dx");
+}
+
+// the exact renewal solution: its terms, its work for the whole table and
+// the precision of its Irwin-Hall sums, before it is computed
+void check_exact(const MEJob &job)
+{
+  const Distribution &Pc = *job.threshold.dist;
+  const double lo = Pc.lower(), hi = Pc.upper(), X = job.opt.Xmax;
+  const RenewalUniform exact(lo, hi);
+  const std::string which = " (lo = " + fmtg(lo) + ", hi = " + fmtg(hi) + ", xmax = " + fmtg(X) + ")";
+  // renewal terms per point: ~xmax/lo when lo and hi - lo are both small,
+  // cut after ~e xmax/(hi - lo) while hi - lo is not
+  const long cap = RenewalUniform::EXACT_MAX_TERMS;
+  if (exact.terms(X, cap) > cap)
+    throw SpecError("exact: lo is too small: the renewal sums need more than " +
+                    std::to_string(cap) + " terms per point" + which +
+                    "; the cost grows as xmax/lo when hi - lo is small too: raise lo or hi, or "
+                    "lower xmax");
+  const double digits =
+      exact.lost_digits(X, 2.0 * RenewalUniform::EXACT_MAX_LOST_DIGITS) + std::log10(hi / (hi - lo));
+  if (digits > RenewalUniform::EXACT_MAX_LOST_DIGITS)
+    throw SpecError("exact: the Irwin-Hall sums of the renewal solution lose " + fmtg(digits) +
+                    " digits at X = xmax (at most " + fmtg(RenewalUniform::EXACT_MAX_LOST_DIGITS) +
+                    ")" + which + "; xmax must stay below ~60 mean lifetimes (lo + hi)/2 and "
+                    "hi - lo not too small: lower xmax");
+  // the table: a point every 0.01 in X (run_me_job), work sampled at up to
+  // 100 of them
+  const size_t stride = std::max<size_t>(1, (size_t) std::llround(0.01 / job.opt.dx));
+  const double points = std::floor(X / (stride * job.opt.dx) + 0.5) + 1.0;
+  const int samples = (int) std::min(points, 100.0);
+  double sum = 0.0;
+  for (int i = 1; i <= samples; ++i) sum += exact.work(X * i / samples);
+  const double total = sum * points / samples;
+  if (total > EXACT_MAX_WORK)
+    throw SpecError("exact: the renewal solution would take ~" +
+                    fmtg(std::round(total * EXACT_SECONDS_PER_WORK)) + " s for " + fmtg(points) +
+                    " points of X" + which + ", at most ~" +
+                    fmtg(EXACT_MAX_WORK * EXACT_SECONDS_PER_WORK) + " s; lower xmax or raise lo");
+}
+
 }    // namespace
+
+// Every output file can be written: opened for appending (created when
+// missing, and then removed again), so that nothing is changed on disk
+// and a bad name stops the job before it is solved.
+void check_me_outputs(const MEJob &job)
+{
+  std::vector<std::pair<std::string, std::string>> files;
+  if (!job.force_file.empty()) files.emplace_back("force", job.force_file);
+  if (!job.steady_file.empty()) files.emplace_back("steady", job.steady_file);
+  for (const auto &s : job.snapshots) files.emplace_back("snapshot", s.second);
+  if (!job.summary_file.empty()) files.emplace_back("summary", job.summary_file);
+  if (!job.exact_file.empty()) files.emplace_back("exact", job.exact_file);
+  if (!job.substrate_file.empty()) files.emplace_back("substrate", job.substrate_file);
+  for (const auto &f : files) {
+    std::FILE *probe = std::fopen(f.second.c_str(), "r");
+    const bool existed = probe != nullptr;
+    if (probe) std::fclose(probe);
+    std::FILE *out = std::fopen(f.second.c_str(), "a");
+    if (!out)
+      throw SpecError(f.first + ": cannot write file '" + f.second + "' (" +
+                      std::string(std::strerror(errno)) + ")");
+    std::fclose(out);
+    if (!existed) std::remove(f.second.c_str());
+  }
+}
 
 const char *me_job_keywords()
 {
@@ -70,13 +205,20 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
     if (pos >= args.size()) throw SpecError(kw + ": missing value");
     return args[pos++];
   };
-  auto num = [&](const std::string &kw) {
+  auto number_of = [&](const std::string &kw) {
     const std::string &tok = value(kw);
     try {
       return number(tok);
     } catch (const SpecError &) {
       throw SpecError(kw + ": expected a number, got '" + tok + "'");
     }
+  };
+  // an output file name; a keyword in its place means the name is missing
+  // (it would otherwise be taken as the name and its values as keywords)
+  auto file = [&](const std::string &kw) -> const std::string & {
+    if (pos < args.size() && is_keyword(args[pos]))
+      throw SpecError(kw + ": missing file name before the keyword '" + args[pos] + "'");
+    return value(kw);
   };
   while (pos < args.size()) {
     const std::string kw = args[pos++];
@@ -92,10 +234,10 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
       if (v != "x" && v != "y" && v != "z")
         throw SpecError("dir: unknown value '" + v + "'; allowed: x, y, z");
     } else if (kw == "xmax") {
-      job.opt.Xmax = num(kw);
+      job.opt.Xmax = number_of(kw);
       if (!(job.opt.Xmax > 0.0)) throw SpecError("xmax: must be > 0");
     } else if (kw == "dx") {
-      job.opt.dx = num(kw);
+      job.opt.dx = number_of(kw);
       if (!(job.opt.dx > 0.0)) throw SpecError("dx: must be > 0");
     } else if (kw == "start") {
       const std::string &v = value(kw);
@@ -113,21 +255,21 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
         throw SpecError("richardson: unknown value '" + v + "'; allowed: yes, no");
       richardson = (v == "yes") ? 1 : 0;
     } else if (kw == "force") {
-      job.force_file = value(kw);
+      job.force_file = file(kw);
     } else if (kw == "steady") {
-      job.steady_file = value(kw);
+      job.steady_file = file(kw);
     } else if (kw == "summary") {
-      job.summary_file = value(kw);
+      job.summary_file = file(kw);
     } else if (kw == "exact") {
-      job.exact_file = value(kw);
+      job.exact_file = file(kw);
     } else if (kw == "substrate") {
-      job.substrate_file = value(kw);
+      job.substrate_file = file(kw);
       job.substrate_key = value(kw);
-      job.substrate_uc = num(kw);
+      job.substrate_uc = number_of(kw);
       if (!(job.substrate_uc > 0.0)) throw SpecError("substrate: uc must be > 0");
     } else if (kw == "snapshot") {
-      const double X = num(kw);
-      job.snapshots.emplace_back(X, value(kw));
+      const double X = number_of(kw);
+      job.snapshots.emplace_back(X, file(kw));
       job.opt.snapshots.push_back(X);
     } else {
       throw SpecError("unknown keyword '" + kw + "'; allowed: " + me_job_keywords());
@@ -140,10 +282,22 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
   // xmax on the grid: a whole number of steps of dx (Richardson needs the
   // fine grid to end at the same X)
   job.xmax_requested = job.opt.Xmax;
-  const long nsteps = std::lround(job.opt.Xmax / job.opt.dx);
+  // the number of steps in floating point first (xmax 1e300 must not
+  // overflow the integer conversion); Richardson also solves at dx/2,
+  // with twice the steps
+  const double steps = job.opt.Xmax / job.opt.dx;
+  const bool rich = richardson < 0 ? job.opt.crossing == Crossing::EXACT : richardson == 1;
+  if (!(steps <= (rich ? 0.5 : 1.0) * MAX_STEPS))
+    throw SpecError("xmax: xmax/dx = " + fmtg(steps) + " steps (xmax = " + fmtg(job.opt.Xmax) +
+                    ", dx = " + fmtg(job.opt.dx) + "), at most " +
+                    (rich ? fmtg(0.5 * MAX_STEPS) + " with richardson (" + fmtg(MAX_STEPS) +
+                                " without)"
+                          : fmtg(MAX_STEPS)) +
+                    "; lower xmax or raise dx");
+  const long nsteps = std::lround(steps);
   if (nsteps < 1)
-    throw SpecError("xmax: must be at least dx (xmax = " + std::to_string(job.opt.Xmax) +
-                    ", dx = " + std::to_string(job.opt.dx) + ")");
+    throw SpecError("xmax: must be at least dx (xmax = " + num(job.opt.Xmax) + ", dx = " +
+                    num(job.opt.dx) + ")");
   job.opt.Xmax = nsteps * job.opt.dx;
   if (job.opt.start == MEStart::REFORM && !job.reform.dist)
     throw SpecError("start reform: needs contacts that re-form (reform none given)");
@@ -158,18 +312,22 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
   if (!job.exact_file.empty() && !exact_applies(job))
     throw SpecError("exact: needs threshold uniform lo hi with lo > 0, reform delta 0, start "
                     "relaxed, crossing exact");
+  // every size before anything is allocated
+  check_grid(job);
+  if (!job.exact_file.empty()) check_exact(job);
   if (!job.substrate_file.empty() && job.substrate_uc > job.opt.Xmax * (1.0 + 1e-12))
-    throw SpecError("substrate: uc = " + std::to_string(job.substrate_uc) +
-                    " beyond xmax = " + std::to_string(job.opt.Xmax) + "; raise xmax");
+    throw SpecError("substrate: uc = " + num(job.substrate_uc) + " beyond xmax = " +
+                    num(job.opt.Xmax) + "; raise xmax");
   for (const auto &s : job.snapshots)
     if (!(s.first >= 0.0 && s.first <= job.opt.Xmax + 0.5 * job.opt.dx))
-      throw SpecError("snapshot: X = " + std::to_string(s.first) + " outside [0, xmax]");
+      throw SpecError("snapshot: X = " + num(s.first) + " outside [0, xmax]");
   return job;
 }
 
 MEReport run_me_job(const MEJob &job, bool write_files)
 {
   const MEOptions &opt = job.opt;
+  if (write_files) check_me_outputs(job);
   const auto t0 = std::chrono::steady_clock::now();
   MEResult res = solve_master_equation(job.threshold.dist, job.reform.dist, opt);
   if (job.richardson) {
@@ -187,7 +345,18 @@ MEReport run_me_job(const MEJob &job, bool write_files)
   }
   const Distribution &Pc = *job.threshold.dist;
   SteadyState ss;
-  if (job.reform.dist) ss = steady_state(Pc, *job.reform.dist);
+  bool reform_as_point = false;
+  if (job.reform.dist) {
+    // a re-forming distribution narrower than 1e-12 of the thresholds'
+    // range (gaussian 0.1 1e-300) is a point for the stationary solution:
+    // its quadrature over [r_lo, r_hi] would collapse to 0/0
+    const Distribution &R = *job.reform.dist;
+    double rlo = R.lower(), rhi = R.upper();
+    if (!std::isfinite(rlo)) rlo = R.quantile(1e-17);
+    if (!std::isfinite(rhi)) rhi = R.isf(1e-17);
+    reform_as_point = !R.is_point() && !(rhi - rlo > 1e-12 * Pc.effective_upper());
+    ss = reform_as_point ? steady_state(Pc, *make_delta(R.mean())) : steady_state(Pc, R);
+  }
 
   // per-contact stiffness k_i = kc f: F scales with <f>, the spread of one
   // contact's force is sqrt(<f^2><x^2> - <f>^2<x>^2)
@@ -253,6 +422,10 @@ MEReport run_me_job(const MEJob &job, bool write_files)
   if (job.reform.dist)
     t += format("  kinetic      F_k/(N k_c) = %.10f (stationary solution), Gamma_s = %.10f\n", ss.F,
                 ss.Gamma);
+  if (reform_as_point)
+    t += format("  NOTE         reform %s is narrower than 1e-12 of the thresholds' range: the "
+                "stationary solution takes it as delta %g\n", job.reform.text.c_str(),
+                job.reform.dist->mean());
   t += format("  F(xmax)      F/(N k_c)   = %.10f\n", res.F.back());
   if (kstar.found)
     t += format("  stiffness    K*/K_s      = %.10f at X = %.6f\n", kstar.value, kstar.X);
@@ -265,7 +438,7 @@ MEReport run_me_job(const MEJob &job, bool write_files)
     RenewalUniform exact(Pc.lower(), Pc.upper());
     std::ofstream out;
     if (write_files) {
-      out = open_out(job.exact_file);
+      out = open_out("exact", job.exact_file);
       out << "# exact renewal solution: X <x> <x^2> Gamma; " << job.threshold.text << "\n";
     }
     double maxerr = 0.0;
@@ -284,7 +457,7 @@ MEReport run_me_job(const MEJob &job, bool write_files)
   if (!write_files) return rep;
 
   if (!job.force_file.empty()) {
-    std::ofstream out = open_out(job.force_file);
+    std::ofstream out = open_out("force", job.force_file);
     out << "# eq-me: threshold " << job.threshold.text << ", reform " << job.reform.text << ", dx "
         << opt.dx << "\n# X F/(N*kc) sd(x) Gamma attached skewness(x)\n";
     for (size_t k = 0; k < res.X.size(); ++k)
@@ -292,7 +465,7 @@ MEReport run_me_job(const MEJob &job, bool write_files)
           << res.attached[k] << " " << res.skew[k] << "\n";
   }
   if (!job.steady_file.empty()) {
-    std::ofstream out = open_out(job.steady_file);
+    std::ofstream out = open_out("steady", job.steady_file);
     out << "# eq-me steady state: threshold " << job.threshold.text << ", reform "
         << job.reform.text << "\n# F_k/(N*kc) = " << ss.F << ", Gamma_s = " << ss.Gamma
         << "\n# x Q_s(x)\n";
@@ -303,17 +476,18 @@ MEReport run_me_job(const MEJob &job, bool write_files)
     for (size_t i = 0; i < res.snapX.size(); ++i)
       if (std::fabs(res.snapX[i] - s.first) <= 0.5 * opt.dx) idx = i;
     if (idx == res.snapX.size()) continue;
-    std::ofstream out = open_out(s.second);
+    std::ofstream out = open_out("snapshot", s.second);
     out << "# eq-me Q(x;X) at X = " << res.snapX[idx] << "\n# x Q(x;X)\n";
     for (size_t j = 0; j < res.x.size(); ++j)
       if (res.snapQ[idx][j] != 0.0) out << res.x[j] << " " << res.snapQ[idx][j] << "\n";
   }
   if (!job.substrate_file.empty()) {
-    // F(X)/(N k_c) on [0, uc]: the grid points below uc, then uc itself
-    // (linear interpolation between the two grid points around it)
+    // F(X)/(N k_c) on [0, uc]: the grid points below uc (X = 0 always, also
+    // for a uc below 1e-9 dx), then uc itself (linear interpolation between
+    // the two grid points around it)
     std::vector<double> u, phi;
     const double uc = job.substrate_uc;
-    for (size_t k = 0; k < res.X.size() && res.X[k] < uc - 1e-9 * opt.dx; ++k) {
+    for (size_t k = 0; k < res.X.size() && (k == 0 || res.X[k] < uc - 1e-9 * opt.dx); ++k) {
       u.push_back(res.X[k]);
       phi.push_back(res.F[k]);
     }
@@ -334,14 +508,14 @@ MEReport run_me_job(const MEJob &job, bool write_files)
         "; use: fix ID group eq/substrate kc table FILE " + job.substrate_key + "\ncolumns: index u phi(u)";
     // validated as fix eq/substrate will read it
     SubstrateShape::table(u, phi, job.substrate_file + " " + job.substrate_key);
-    std::ofstream out = open_out(job.substrate_file);
+    std::ofstream out = open_out("substrate", job.substrate_file);
     out << substrate_table_text(job.substrate_key, u, phi, comment);
     t += format("  substrate    %s %s: phi(u) on [0, %g], %zu points, max phi = %.6f\n",
                 job.substrate_file.c_str(), job.substrate_key.c_str(), uc, u.size(),
                 *std::max_element(phi.begin(), phi.end()));
   }
   if (!job.summary_file.empty()) {
-    std::ofstream out = open_out(job.summary_file);
+    std::ofstream out = open_out("summary", job.summary_file);
     out << std::setprecision(15);
     for (const auto &kv : v) out << kv.first << " " << kv.second << "\n";
   }

@@ -44,7 +44,9 @@ struct MEJob {
   double xmax_requested = 0.0;    // before rounding to a multiple of dx
 };
 
-// Parses keyword/value pairs; throws SpecError naming the keyword.
+// Parses keyword/value pairs; throws SpecError naming the keyword.  Also
+// checks the sizes of the solution (grid points, steps, exact renewal
+// terms) before anything is allocated.
 MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &number,
                    const FileLoader &load = {});
 
@@ -54,8 +56,12 @@ struct MEReport {
 };
 
 // Solves, writes the requested files (when write_files) and returns the
-// summary.  Throws SpecError on output problems.
+// summary.  Throws SpecError on output problems (checked before solving).
 MEReport run_me_job(const MEJob &job, bool write_files = true);
+
+// Throws SpecError "<keyword>: cannot write file '...'" for the first
+// output file that cannot be written; changes nothing on disk.
+void check_me_outputs(const MEJob &job);
 
 const char *me_job_keywords();
 

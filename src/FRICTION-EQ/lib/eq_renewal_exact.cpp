@@ -7,7 +7,10 @@
 #include "eq_distribution.h"
 #include "eq_master_equation.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace feq {
 
@@ -39,22 +42,79 @@ double RenewalUniform::density(int n, double s) const
   return double(sum / fact / w);
 }
 
+// The terms n with n a < X, cut where the bound of their contribution,
+// t^(n-1)/(n-1)! b/w with t = (X - n a)/w, has dropped below 1e-20 and
+// falls for every larger n (n - 1 > t).  The moments and the rate are of
+// order b^p and 1/b: relative to them every later term is smaller still.
+long RenewalUniform::terms(double X, long cap) const
+{
+  const double log_tol = std::log(1e-20) - std::log(b / w);
+  long n = 0;
+  while (n <= cap) {
+    const double m = double(n + 1);
+    if (!(m * a < X)) break;
+    const double t = (X - m * a) / w;
+    if (m >= 2.0 && m - 1.0 > t && (m - 1.0) * std::log(t) - std::lgamma(m) < log_tol) break;
+    ++n;
+  }
+  return n;
+}
+
+double RenewalUniform::work(double X) const
+{
+  const long N = terms(X, EXACT_MAX_TERMS);
+  double sum = 0.0;
+  for (long n = 1; n <= N; ++n) {
+    // as moment(): pieces between the kinks within (lo, hi), 2 panels of
+    // 10 nodes, each a sum of min(t, n - t) + 1 terms
+    const double lo = std::max(n * a, X - b), hi = std::min(X, n * b);
+    const double t = std::min((X - n * a) / w, 0.5 * n);
+    const double pieces = hi > lo ? std::min(double(n), (hi - lo) / w) + 3.0 : 0.0;
+    sum += (2.0 * 20.0 * pieces + 1.0) * (std::floor(std::max(t, 0.0)) + 1.0);
+  }
+  return sum;
+}
+
+double RenewalUniform::lost_digits(double X, double stop) const
+{
+  const long N = terms(X, EXACT_MAX_TERMS);
+  double worst = 0.0;
+  for (long n = 2; n <= N && worst <= stop; ++n) {
+    // density(): terms C(n,k) (t-k)^(n-1)/(n-1)! for k <= t, t <= n/2;
+    // each grows with t, so the largest is at the largest t reached
+    const double t = std::min((X - n * a) / w, 0.5 * n);
+    const double base = std::lgamma(n + 1.0) - std::lgamma(double(n));
+    for (long k = 0; k < t; ++k) {
+      const double lt = base - std::lgamma(k + 1.0) - std::lgamma(double(n - k) + 1.0) +
+          (n - 1.0) * std::log(t - k);
+      worst = std::max(worst, lt / std::log(10.0));
+    }
+  }
+  return worst;
+}
+
 double RenewalUniform::rate(double X) const
 {
   double g = 0.0;
-  for (int n = 1; n * a < X; ++n) g += density(n, X);
+  const long N = terms(X, std::numeric_limits<int>::max() - 1);
+  for (int n = 1; n <= N; ++n) g += density(n, X);
   return g;
 }
 
 double RenewalUniform::moment(double X, int p) const
 {
   double sum = std::pow(X, p) * J(X);
-  for (int n = 1; n * a < X; ++n) {
+  const long N = terms(X, std::numeric_limits<int>::max() - 1);
+  for (int n = 1; n <= N; ++n) {
+    // J(X - s) = 0 below s = X - b: that part adds nothing
+    const double lo = std::max(n * a, X - b), hi = std::min(X, n * b);
+    if (!(hi > lo)) continue;
+    // the kinks n a + k w of f_n within (lo, hi) only (k w < hi - n a)
     std::vector<double> breaks;
-    for (int k = 0; k <= n; ++k) breaks.push_back(n * a + k * w);
+    const double kmax = std::min(double(n), std::floor((hi - n * a) / w) + 1.0);
+    for (int k = 0; k <= (int) kmax; ++k) breaks.push_back(n * a + k * w);
     breaks.push_back(X - a);
     breaks.push_back(X - b);
-    const double lo = n * a, hi = std::min(X, n * b);
     sum += integrate([&](double s) { return density(n, s) * std::pow(X - s, p) * J(X - s); }, lo, hi,
                      breaks, 2);
   }

@@ -16,6 +16,14 @@
    equation solver and the EQ simulations (paper Sec. IV: "admits an exact
    solution").  Accurate to ~1e-13 for X <= 12 (cancellation in the
    Irwin-Hall sum grows with the number of renewals).
+
+   Cost: the sums run over n < X/a, but f_n(s) <= t^(n-1) / ((n-1)! w)
+   with t = (s - n a)/w (the density of a sum of n uniforms is below that
+   of the unbounded simplex): once n - 1 > t the terms fall faster than
+   geometrically, and they are cut where their bound drops below 1e-20 of
+   the result.  The number of terms is then ~min(X/a, e X/w + 40): small
+   for a -> 0 when w is not, growing as X/a only when a and w are both
+   small (terms() tells; eq-me/eq/me refuse more than EXACT_MAX_TERMS).
 ------------------------------------------------------------------------- */
 
 #ifndef FEQ_RENEWAL_EXACT_H
@@ -30,6 +38,19 @@ class RenewalUniform {
   double second_moment(double X) const { return moment(X, 2); }
   double rate(double X) const;                                     // Gamma(X)
   double density(int n, double s) const;                           // f_n(s)
+  // number of renewal terms the sums at X use (counting stops above cap)
+  long terms(double X, long cap = EXACT_MAX_TERMS) const;
+  // work of mean_stretch + second_moment + rate at X, in evaluations of a
+  // term of an Irwin-Hall sum (0.17-0.3 us each)
+  double work(double X) const;
+  // decimal digits the alternating Irwin-Hall sums lose at X (log10 of
+  // their largest term); counting stops above `stop`
+  double lost_digits(double X, double stop = 30.0) const;
+
+  // limits for callers (eq-me, eq/me): renewal terms per point, and
+  // digits lost (long double keeps ~19: 7 leave F(X) good to ~1e-12)
+  static constexpr long EXACT_MAX_TERMS = 2000;
+  static constexpr double EXACT_MAX_LOST_DIGITS = 7.0;
 
  private:
   double a, b, w;
