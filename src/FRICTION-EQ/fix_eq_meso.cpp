@@ -49,14 +49,14 @@ constexpr double GRID_DEFAULT_SD = 0.125;
 // a block's Q may lose this much probability (rounding) before it is an error
 constexpr double NORM_TOLERANCE = 1e-9;
 constexpr int CHECK_DEFAULT = 1000;
-enum { COMM_RATE = 1, COMM_DISP = 2 };
+enum { COMM_RATE = 1 };
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
 
 FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
     FixEQBlocks(lmp, narg, arg), nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
-    lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), list_stamp(-1), comm_mode(0),
+    lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), pi0_local(0.0), list_stamp(-1), comm_mode(0),
     check_every(CHECK_DEFAULT), norm_max(0.0), neval(0), reduced_eval(-1)
 {
   sitecol = M_SITE;
@@ -194,7 +194,7 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
   extvector = -1;
   extlist = new int[NVEC]{1, 0, 0, 0, 1, 1, 0, 0, 0};
   respa_level_support = 1;
-  comm_forward = 1;
+  comm_forward = 2;
   peratom_setup(M_HEAD + model->width(), NOUT);
 
   const int nlocal = atom->nlocal;
@@ -351,8 +351,10 @@ void FixEQMeso::apply(bool advance)
 }
 
 /* ----------------------------------------------------------------------
-   screening: the partners within rcut at the distance of their sites,
-   found after every neighbor list build and sorted by atom ID
+   screening: the blocks of the neighbor list (within rcut + skin) of each
+   local block, found after every list build and sorted by atom ID (ties:
+   periodic images, by their offset), so that eps is the same sum in the
+   same order on any number of ranks and whatever the list's schedule
 ------------------------------------------------------------------------- */
 
 void FixEQMeso::partners()
@@ -362,145 +364,145 @@ void FixEQMeso::partners()
     error->all(FLERR, "Fix eq/meso screen: rcut {} + neighbor skin {} exceeds the ghost atom "
                       "cutoff {}; partners would be missed: set comm_modify cutoff {} or more",
                rcut, neighbor->skin, comm->get_comm_cutoff(), need);
-  // the displacements of all blocks, ghosts included
+  double **x = atom->x;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
-  if ((int) cbuf.size() < atom->nmax) cbuf.resize(atom->nmax);
-  const int *mask = atom->mask;
-  for (int i = 0; i < nlocal; i++)
-    cbuf[i] = (mask[i] & groupbit) ? state[i][M_DISP] : std::numeric_limits<double>::quiet_NaN();
-  comm_mode = COMM_DISP;
-  EQCompat::forward_comm(comm, (Fix *) this);
-
-  double **x = atom->x;
-  const tagint *tag = atom->tag;
-  const int d = idir;
-  const double cutsq = rcut * rcut * (1.0 + 2e-12);
-  const double scale = nlambda * kappa;
-  first.assign(nlocal + 1, 0);
-  pj.clear();
-  ppi.clear();
   struct Partner {
     tagint tag;
-    double pi;
+    double del[3];
     int j;
   };
   std::vector<Partner> mine;
-  double pimax = 0.0, dxbig = 0.0;
-  tagint worst = 0, ibig = 0, jbig = 0;
-  std::vector<int> start(nlocal, -1), count(nlocal, 0);
+  std::vector<int> range(2 * (size_t) nlocal, 0);
+  std::vector<int> pj2;
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
-    if (std::isnan(cbuf[i])) continue;
+    if (!(mask[i] & groupbit)) continue;
     mine.clear();
     const int *jlist = list->firstneigh[i];
     for (int jj = 0; jj < list->numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
-      if (j >= nall || std::isnan(cbuf[j])) continue;
+      if (j >= nall || !(mask[j] & groupbit)) continue;
+      mine.push_back({tag[j], {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]}, j});
+    }
+    std::sort(mine.begin(), mine.end(), [](const Partner &a, const Partner &b) {
+      if (a.tag != b.tag) return a.tag < b.tag;
+      for (int k = 0; k < 3; k++)
+        if (a.del[k] != b.del[k]) return a.del[k] < b.del[k];
+      return false;
+    });
+    range[2 * i] = (int) pj2.size();
+    for (const Partner &p : mine) pj2.push_back(p.j);
+    range[2 * i + 1] = (int) pj2.size();
+  }
+  first.swap(range);
+  pj.swap(pj2);
+  list_stamp = neighbor->ncalls;
+}
+
+/* ----------------------------------------------------------------------
+   eps_n = x_c sum_m Gamma_m Pi_mn from the rates of this step, for the
+   next one; Pi_mn at the distance of the sites now (blocks move along dir
+   from their sites; along the other directions with their positions)
+------------------------------------------------------------------------- */
+
+void FixEQMeso::screening()
+{
+  const bool rebuilt = neighbor->ago == 0 || list_stamp < 0;
+  if (rebuilt) partners();
+  const int nlocal = atom->nlocal;
+  if ((int) cbuf.size() < 2 * atom->nmax) cbuf.resize(2 * (size_t) atom->nmax);
+  const int *mask = atom->mask;
+  for (int i = 0; i < nlocal; i++) {
+    const bool block = (mask[i] & groupbit) != 0;
+    cbuf[2 * i] = block ? state[i][M_RATE] : 0.0;
+    cbuf[2 * i + 1] = block ? state[i][M_DISP] : 0.0;
+  }
+  comm_mode = COMM_RATE;
+  EQCompat::forward_comm(comm, (Fix *) this);
+
+  double **x = atom->x;
+  const int d = idir;
+  const double cutsq = rcut * rcut * (1.0 + 2e-12);
+  const double scale = nlambda * kappa;
+  double pimax = 0.0, dxbig = 0.0;
+  int iworst = -1, ibig = -1, jbig = -1;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double Xi = cbuf[2 * i + 1];
+    double e = 0.0, pi0 = 0.0;
+    for (int m = first[2 * i]; m < first[2 * i + 1]; m++) {
+      const int j = pj[m];
+      const double dX = Xi - cbuf[2 * j + 1];
       double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-      del[d] -= cbuf[i] - cbuf[j];    // sites
+      del[d] -= dX;    // sites
       const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
       if (rsq > cutsq) continue;
       if (!(rsq > 0.0))
-        error->one(FLERR, "Fix eq/meso screen: blocks {} and {} share a site", tag[i], tag[j]);
-      const double dx = std::fabs(cbuf[i] - cbuf[j]);
-      if (dx > dxbig) {
-        dxbig = dx;
-        ibig = tag[i];
-        jbig = tag[j];
+        error->one(FLERR, "Fix eq/meso screen: blocks {} and {} share a site", atom->tag[i],
+                   atom->tag[j]);
+      if (std::fabs(dX) > dxbig) {
+        dxbig = std::fabs(dX);
+        ibig = i;
+        jbig = j;
       }
-      const double r = std::sqrt(rsq);
-      const double ratio = lambda_c / r;
-      mine.push_back({tag[j], scale * ratio * ratio * ratio, j});
+      const double ratio = lambda_c / std::sqrt(rsq);
+      const double pi = scale * ratio * ratio * ratio;
+      pi0 += pi;
+      e += pi * cbuf[2 * j];
     }
-    std::sort(mine.begin(), mine.end(), [](const Partner &a, const Partner &b) {
-      return a.tag < b.tag || (a.tag == b.tag && a.pi < b.pi);
-    });
-    start[i] = (int) pj.size();
-    double pi0 = 0.0;
-    for (const Partner &p : mine) {
-      pj.push_back(p.j);
-      ppi.push_back(p.pi);
-      pi0 += p.pi;
-    }
-    count[i] = (int) mine.size();
+    state[i][M_EPS] = xc * e;
     if (pi0 > pimax) {
       pimax = pi0;
-      worst = tag[i];
+      iworst = i;
     }
   }
-  // partners are found in the list of the current positions: their
+  // partners come from the list of the current positions: their
   // displacements may differ by less than the skin (with a margin of a
   // factor 2 for the motion until the next list build)
   if (dxbig > 0.5 * neighbor->skin)
     error->one(FLERR, "Fix eq/meso screen: the displacements of blocks {} and {} differ by {:.6g}, "
                       "more than half the neighbor skin {}: partners may be missing from the "
                       "neighbor list; raise the skin (neighbor SKIN bin) above twice the largest "
-                      "difference", ibig, jbig, dxbig, neighbor->skin);
-  // per-atom ranges in atom order
-  std::vector<int> pj2(pj.size());
-  std::vector<double> ppi2(ppi.size());
-  int n = 0;
-  for (int i = 0; i < nlocal; i++) {
-    first[i] = n;
-    for (int m = 0; m < count[i]; m++, n++) {
-      pj2[n] = pj[start[i] + m];
-      ppi2[n] = ppi[start[i] + m];
+                      "difference", atom->tag[ibig], atom->tag[jbig], dxbig, neighbor->skin);
+  // Pi0 = sum_m Pi_mn < 1, checked after every list build (one reduction)
+  pi0_local = pimax;
+  if (rebuilt) {
+    struct {
+      double value;
+      int rank;
+    } in{pimax, comm->me}, out{0.0, 0};
+    MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+    pi0_max = out.value;
+    if (pi0_max >= 1.0) {
+      double who = iworst >= 0 ? (double) atom->tag[iworst] : 0.0;
+      MPI_Bcast(&who, 1, MPI_DOUBLE, out.rank, world);
+      error->all(FLERR, "Fix eq/meso screen: Pi0 = sum_m Pi_mn = {:.6g} >= 1 at block {}: no "
+                        "screened solution (eps0 = Pi0/(1 - Pi0) diverges); lower kappa ({}) or "
+                        "rcut ({})", pi0_max, (tagint) who, kappa, rcut);
     }
   }
-  first[nlocal] = n;
-  pj.swap(pj2);
-  ppi.swap(ppi2);
-
-  struct {
-    double value;
-    int rank;
-  } in{pimax, comm->me}, out{0.0, 0};
-  MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
-  pi0_max = out.value;
-  if (pi0_max >= 1.0) {
-    double who = (double) worst;
-    MPI_Bcast(&who, 1, MPI_DOUBLE, out.rank, world);
-    error->all(FLERR, "Fix eq/meso screen: Pi0 = sum_m Pi_mn = {:.6g} >= 1 at block {}: no "
-                      "screened solution (eps0 = Pi0/(1 - Pi0) diverges); lower kappa ({}) or "
-                      "rcut ({})", pi0_max, (tagint) who, kappa, rcut);
-  }
-  list_stamp = neighbor->ncalls;
 }
 
-/* ----------------------------------------------------------------------
-   eps_n = x_c sum_m Gamma_m Pi_mn from the rates of this step, for the
-   next one (the same sum in the same order on any number of ranks)
-------------------------------------------------------------------------- */
-
-void FixEQMeso::screening()
-{
-  if (neighbor->ago == 0 || list_stamp < 0) partners();
-  const int nlocal = atom->nlocal;
-  if ((int) cbuf.size() < atom->nmax) cbuf.resize(atom->nmax);
-  const int *mask = atom->mask;
-  for (int i = 0; i < nlocal; i++)
-    cbuf[i] = (mask[i] & groupbit) ? state[i][M_RATE] : 0.0;
-  comm_mode = COMM_RATE;
-  EQCompat::forward_comm(comm, (Fix *) this);
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    double e = 0.0;
-    for (int m = first[i]; m < first[i + 1]; m++) e += ppi[m] * cbuf[pj[m]];
-    state[i][M_EPS] = xc * e;
-  }
-}
-
+// rate and displacement of each block
 int FixEQMeso::pack_forward_comm(int n, int *list_, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
-  for (int i = 0; i < n; i++) buf[i] = cbuf[list_[i]];
-  return n;
+  for (int i = 0; i < n; i++) {
+    buf[2 * i] = cbuf[2 * list_[i]];
+    buf[2 * i + 1] = cbuf[2 * list_[i] + 1];
+  }
+  return 2 * n;
 }
 
 void FixEQMeso::unpack_forward_comm(int n, int first_, double *buf)
 {
-  if ((int) cbuf.size() < first_ + n) cbuf.resize(first_ + n);
-  for (int i = 0; i < n; i++) cbuf[first_ + i] = buf[i];
+  if ((int) cbuf.size() < 2 * (first_ + n)) cbuf.resize(2 * (size_t) (first_ + n));
+  for (int i = 0; i < n; i++) {
+    cbuf[2 * (first_ + i)] = buf[2 * i];
+    cbuf[2 * (first_ + i) + 1] = buf[2 * i + 1];
+  }
 }
 
 /* ----------------------------------------------------------------------
@@ -571,7 +573,12 @@ double FixEQMeso::compute_vector(int n)
   switch (n) {
     case V_STAGE: return drive_flag ? stage : 0.0;
     case V_NORM: return norm_max;
-    case V_PI0: return pi0_max;
+    case V_PI0: {
+      // of this step's distances (reduced on demand)
+      double all = 0.0;
+      MPI_Allreduce(&pi0_local, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+      return all;
+    }
   }
   reduce();
   const double count = global_sum[S_COUNT];
@@ -601,6 +608,6 @@ int FixEQMeso::modify_param(int narg, char **arg)
 double FixEQMeso::memory_usage()
 {
   return FixEQPerAtom::memory_usage() +
-      (double) (cbuf.capacity() + ppi.capacity() + qbuf.capacity()) * sizeof(double) +
+      (double) (cbuf.capacity() + qbuf.capacity()) * sizeof(double) +
       (double) (pj.capacity() + first.capacity()) * sizeof(int);
 }

@@ -71,15 +71,15 @@ class FixEQMeso : public FixEQBlocks {
   double kappa, lambda_c, rcut;
   double window;       // the breaking rate is averaged over this much displacement
   class NeighList *list;
-  // partners of each local block within rcut (at the distance of their
-  // sites), sorted by atom ID so that eps is the same sum on any number of
-  // ranks: pj[first[i] .. first[i+1]) with Pi_ij in ppi
+  // the blocks in the neighbor list of each local block (within rcut +
+  // skin), sorted by atom ID so that eps is the same sum on any number of
+  // ranks: pj[first[2i] .. first[2i+1])
   std::vector<int> first, pj;
-  std::vector<double> ppi;
-  double pi0_max;      // largest sum_m Pi_mn over the blocks
+  double pi0_max;      // largest sum_m Pi_mn over the blocks at the last list build
+  double pi0_local;    // largest sum_m Pi_mn of this rank's blocks at the last step
   bigint list_stamp;   // neighbor->ncalls of the partners (-1: none)
   int comm_mode;
-  std::vector<double> cbuf;    // forward communication buffer (rate or displacement)
+  std::vector<double> cbuf;    // forward communication: rate and displacement per atom
   // normalization check of the blocks' Q every check_every steps
   int check_every;
   double norm_max;
