@@ -30,6 +30,7 @@
 #include "eq_meso.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -154,6 +155,14 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
                            feq::role_styles(feq::Role::THRESHOLD));
     if (du == 0.0) du = GRID_DEFAULT_SD * std::sqrt(threshold.dist->variance());
     model.reset(new feq::MesoModel(threshold.dist, reform.dist, du, crossing, start));
+    // what the per-block state depends on, as a 52-bit FNV-1a hash (exact
+    // in a double) for the restart file
+    const std::string sig = fmt::format("{}|{}|{:.17g}|{}|{}", threshold.text, reform.text, du,
+                                        crossing == feq::Crossing::EXACT ? "exact" : "step",
+                                        start == feq::MEStart::RELAXED ? "relaxed" : "reform");
+    uint64_t hsh = 1469598103934665603ULL;
+    for (const unsigned char c : sig) hsh = (hsh ^ c) * 1099511628211ULL;
+    signature = (double) (hsh & ((1ULL << 52) - 1));
   } catch (const feq::SpecError &e) {
     const std::string msg = e.what();
     error->all(FLERR, "Fix eq/meso{}{}", msg.rfind(':', 0) == 0 ? "" : " ", msg);
@@ -260,7 +269,7 @@ void FixEQMeso::setup(int vflag)
     post_force_respa(vflag, ilevel_respa, 0);
     ((Respa *) update->integrate)->copy_f_flevel(ilevel_respa);
   }
-  check_normalization(true);
+  check_normalization();
 }
 
 void FixEQMeso::min_setup(int /*vflag*/)
@@ -272,7 +281,7 @@ void FixEQMeso::post_force(int /*vflag*/)
 {
   apply(true);
   if (screen_flag) screening();
-  if (check_every > 0 && update->ntimestep % check_every == 0) check_normalization(false);
+  if (check_every > 0 && update->ntimestep % check_every == 0) check_normalization();
 }
 
 void FixEQMeso::post_force_respa(int vflag, int ilevel, int /*iloop*/)
@@ -510,7 +519,7 @@ void FixEQMeso::unpack_forward_comm(int n, int first_, double *buf)
    a loss beyond rounding is an error that names the block
 ------------------------------------------------------------------------- */
 
-void FixEQMeso::check_normalization(bool /*every*/)
+void FixEQMeso::check_normalization()
 {
   const int *mask = atom->mask;
   double worst = 0.0;
@@ -529,6 +538,31 @@ void FixEQMeso::check_normalization(bool /*every*/)
                       "stretches (|int Q - 1| = {:.3g} > {}); the state is corrupt or the grid ({}) "
                       "is too coarse for the motion", who, worst, NORM_TOLERANCE, model->grid());
   MPI_Allreduce(&worst, &norm_max, 1, MPI_DOUBLE, MPI_MAX, world);
+}
+
+/* ----------------------------------------------------------------------
+   global restart: the stage (FixEQBlocks) and the signature of what the
+   blocks' states depend on (thresholds, reform, grid, crossing, start)
+------------------------------------------------------------------------- */
+
+void FixEQMeso::write_restart(FILE *fp)
+{
+  const double list[4] = {stage, vstage, (double) drive_flag, signature};
+  if (comm->me == 0) {
+    int size = 4 * sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 4, fp);
+  }
+}
+
+void FixEQMeso::restart(char *buf)
+{
+  const double *list = (const double *) buf;
+  if (list[3] != signature)
+    error->all(FLERR, "Fix eq/meso: the restart file's blocks were written by a fix eq/meso with "
+                      "other thresholds, reform, grid, crossing or start: re-specify it as in the "
+                      "run that wrote them");
+  FixEQBlocks::restart(buf);
 }
 
 /* ----------------------------------------------------------------------

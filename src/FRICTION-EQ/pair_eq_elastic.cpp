@@ -285,11 +285,11 @@ void PairEQElastic::init_style()
   }
   if (nsources == 0)
     error->all(FLERR, "Pair style eq/elastic needs a fix eq/contacts (the contacts and their "
-                      "stretches) or a fix eq/substrate (blocks and their displacements); define "
+                      "stretches), eq/substrate or eq/meso (blocks and their displacements); define "
                       "it before the run");
   if (nsources > 1)
     error->all(FLERR, "Pair style eq/elastic found {} fixes with coordinates ({}); allowed: "
-                      "exactly one fix eq/contacts or eq/substrate", nsources, names);
+                      "exactly one fix eq/contacts, eq/substrate or eq/meso", nsources, names);
   idir = source->source_dir();
   sgroupbit = source->source_groupbit();
   site_distance = source->source_site_distance();
@@ -606,10 +606,12 @@ void PairEQElastic::drift_check()
   std::vector<double> hold(h, h + nlocal);
   rebuild(true);
   ++n_check;
+  // the scale of h: |h| and the size of its terms, K |q| (rigidly moving
+  // atoms have h ~ 0 but terms of K |q| each)
   for (int i = 0; i < nlocal; i++) {
     if (std::isnan(q[i])) continue;
     drift_max = std::fmax(drift_max, std::fabs(hold[i] - h[i]));
-    hscale_max = std::fmax(hscale_max, std::fabs(h[i]));
+    hscale_max = std::fmax(hscale_max, std::fmax(std::fabs(h[i]), ksum[i] * std::fabs(q[i])));
   }
 }
 
@@ -655,7 +657,8 @@ void PairEQElastic::field_report()
   MPI_Allreduce(counts, sums, 2, MPI_LMP_BIGINT, MPI_SUM, world);
   if (comm->me == 0 && n_update > 0) {
     std::string drift = n_check > 0
-        ? fmt::format("{} drift checks: max |h_incremental - h_full| = {:.3g} (max |h| = {:.3g})",
+        ? fmt::format("{} drift checks: max |h_incremental - h_full| = {:.3g} (scale of h: "
+                      "{:.3g})",
                       n_check, all[0], all[1])
         : (check_every > 0 ? fmt::format("no drift check (one every {} updates)", check_every)
                            : std::string("no drift check (check 0)"));
@@ -665,7 +668,7 @@ void PairEQElastic::field_report()
                    n_update, n_uniform, n_rebuild, n_nonuniform, sums[0], drift);
     if (n_check > 0 && all[0] > 1e-9 * all[1])
       error->warning(FLERR, "Pair eq/elastic: the incremental field drifted by {:.3g} from the "
-                            "recomputed one (max |h| = {:.3g}); lower the check interval "
+                            "recomputed one (scale of h {:.3g}); lower the check interval "
                             "(pair_style eq/elastic rcut check N)", all[0], all[1]);
   }
   n_update = n_uniform = n_rebuild = n_nonuniform = n_change = n_check = 0;

@@ -148,11 +148,29 @@ TEST_F(EQMesoErrors, RestartOfAnotherGrid)
     command("clear");
     command("read_restart eq_meso_grid.restart");
   });
-  TEST_FAILURE(".*ERROR on proc 0: Fix eq/meso: the restart file holds [0-9]+ values per block, this "
-               "fix [0-9]+: re-specify it with the thresholds, reform and grid of the run that wrote "
-               "it.*",
+  TEST_FAILURE(".*ERROR: Fix eq/meso: the restart file's blocks were written by a fix eq/meso with "
+               "other thresholds, reform, grid, crossing or start: re-specify it as in the run "
+               "that wrote them.*",
                fix(std::string("100 1.0 ") + T + " grid 0.01"););
   std::remove("eq_meso_grid.restart");
+}
+
+// the same width, other thresholds: refused by the signature of the
+// blocks' settings in the restart file
+TEST_F(EQMesoErrors, RestartOfOtherThresholds)
+{
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " grid 0.02");
+    command("run 0 post no");
+    command("write_restart eq_meso_thr.restart");
+    command("clear");
+    command("read_restart eq_meso_thr.restart");
+  });
+  TEST_FAILURE(".*ERROR: Fix eq/meso: the restart file's blocks were written by a fix eq/meso with "
+               "other thresholds, reform, grid, crossing or start: re-specify it as in the run "
+               "that wrote them.*",
+               fix("100 1.0 threshold uniform 0.7 1.25 grid 0.02"););
+  std::remove("eq_meso_thr.restart");
 }
 
 TEST_F(EQMesoErrors, FixModify)

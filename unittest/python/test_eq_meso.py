@@ -120,7 +120,7 @@ def test_screening_stripe_square_lattice(tmp_path):
     """Square lattice 24 x 4, nearest neighbours, Pi1 = 0.243 (Pi0 = 0.972,
     eps0 = 34.7): a pinned stripe at x = 0.  The blocks' eps agree with the
     lattice solution of scr.eq08 to 1e-5 relative (what is left of the
-    transient after X = 120 x_c: measured 2e-6), and Delta eps decays with
+    transient after X = 120 x_c: measured 1.1e-7), and Delta eps decays with
     the exact lattice length (fit: to 1e-4) and with the continuum
     lambda_s = (eps0/4)^1/2 of the stripe geometry to 1 %."""
     nx, ny, nlam, kappa, rcut = 24, 4, 100, 0.00243, 1.01
