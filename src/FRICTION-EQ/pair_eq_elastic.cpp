@@ -385,6 +385,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
 {
   double **x = atom->x;
   const int *type = atom->type;
+  const tagint *tag = atom->tag;
   const double *special_lj = force->special_lj;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
@@ -426,6 +427,10 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
       j &= NEIGHMASK;
       const double qj = q[j];
       if (std::isnan(qj)) continue;
+      // a periodic image of the atom itself is the same contact or block:
+      // no interaction (it would only enter K_i and the re-forming of a
+      // broken contact, as if its own stretch stayed behind)
+      if (tag[j] == tag[i]) continue;
       const int jtype = type[j];
       double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
       if (site_distance) del[d] -= qi - qj;
@@ -435,7 +440,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
       pj.push_back(j);
       pk.push_back(k);
       const double dq = qi - qj;
-      if (site_distance && std::fabs(dq) > dubig) {
+      if (site_distance && k != 0.0 && std::fabs(dq) > dubig) {
         dubig = std::fabs(dq);
         ibig = i;
         jbig = j;
@@ -502,7 +507,7 @@ void PairEQElastic::pair_field(bool /*want_virial*/)
     for (int m = fr[2 * i]; m < fr[2 * i + 1]; m++) {
       const double dq = qi - q[jv[m]];
       hi += kv[m] * dq;
-      if (std::fabs(dq) > dubig) {
+      if (kv[m] != 0.0 && std::fabs(dq) > dubig) {
         dubig = std::fabs(dq);
         ibig = i;
         jbig = jv[m];
@@ -519,7 +524,9 @@ void PairEQElastic::skin_error(int i, int j, double du)
   error->one(FLERR,
              "Pair eq/elastic: the displacements of coupled blocks {} and {} differ by {:.6g}, "
              "more than half the neighbor skin {}: coupled pairs may be missing from the neighbor "
-             "list; raise the skin (neighbor SKIN bin) above twice the largest difference",
+             "list; raise the skin (neighbor SKIN bin) above twice the largest difference, or, "
+             "if the blocks were close a few steps ago, the integration is unstable: reduce the "
+             "time step (overdamped: dt < 2 gamma/(4 g + k_c + K))",
              atom->tag[i], atom->tag[j], du, neighbor->skin);
 }
 
