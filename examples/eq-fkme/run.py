@@ -92,6 +92,7 @@ def protocol(out, N, g, vb, shape="sawtooth", f0=None, dump=500, tmax=None, kwea
     tstart, fstart = float(line.split()[6].rstrip(",")), float(line.split()[-1])
     r = {"N": N, "g": g, "vb": vb, "tstart": tstart, "fstart": fstart, "wall": wall,
          "series": fkme.read_ave_time(Path(out) / "series.dat"),
+         "load": fkme.read_ave_time(Path(out) / "load.dat"),
          "fine": fkme.read_ave_time(Path(out) / "fine.dat"), "dt": 0.1}
     if dump:
         steps, cols = fkme.read_dump(Path(out) / "chain.dump", ["id", "vx"])
@@ -426,10 +427,47 @@ def part_integrators(out):
     return res
 
 
+def part_hysteresis(out, N=3000, g=25.0, vb=-1e-3):
+    """The paper's outlook: the driving force rises until the weak pair
+    nucleates kinks (pinned on the way up), then falls while the kinks run
+    (sliding on the way down) until they stop at f_+: the loop of the mean
+    velocity (above the stage's creep) against f."""
+    fini = f_nucleation(N, g, 0.5)
+    fm, fp = fkme.discrete_depinning_force(g, KC, UC, K)
+    r = protocol(out / "hysteresis", N, g, vb, f0=fini - 0.05, dump=0, every=100)
+    ld, s = r["load"], r["series"]
+    farr = arrest_force(r)
+    vbar_up = fkme.background_velocity(1e-4, KC, K)
+    vbar_dn = fkme.background_velocity(vb, KC, K)
+    print(f"# hysteresis: N = {N}, g = {g}, up at v = 1e-4, down at v_b = {vb} (wall "
+          f"{r['wall']:.0f} s)\n"
+          f"  way up: pinned until f = {r['fstart']:.4f} (static chain with the weak pair: "
+          f"{fini:.4f}; uniform chain f_max = {fkme.f_max(KC, UC, K):.3f})\n"
+          f"  way down: sliding until f = {farr:.4f} (discrete depinning force f_+ = {fp:.4f}, "
+          f"Griffith f_min = {fkme.f_min(KC, UC, K):.3f}); loop width {r['fstart'] - farr:.4f}")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.plot(ld["v_f"], ld["v_vmean"] - vbar_up, "C0-", label="f rising (pinned)")
+    ax.plot(s["v_f"], s["v_vmean"] - vbar_dn, "C3-", label="f falling (kinks run)")
+    for x, lab, ls in ((fini, "nucleation", "--"), (fp, "$f_+$", ":"),
+                       (fkme.f_min(KC, UC, K), "Griffith $f_{min}$", "-.")):
+        ax.axvline(x, color="k", ls=ls, lw=0.8, label=lab)
+    ax.set_xlabel("driving force f = K X_s")
+    ax.set_ylabel("<du/dt> above the stage's creep")
+    ax.set_title("FK-ME chain: hysteresis of depinning and arrest")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "eq-fkme-hysteresis.png", dpi=110)
+    print(f"  plot: {out / 'eq-fkme-hysteresis.png'}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--part", nargs="+", default=["all"],
-                    choices=["a04", "a05", "a03", "underdamped", "integrators", "all"])
+                    choices=["a04", "a05", "a03", "underdamped", "integrators", "hysteresis",
+                             "all"])
     ap.add_argument("--N", type=int, default=3000, help="chain length (a04, a05, a03)")
     ap.add_argument("--gs", type=float, nargs="+", default=[5.0, 25.0],
                     help="a05: couplings g (v_b = -4e-5 for g = 5, else -2e-4)")
@@ -437,7 +475,8 @@ def main():
     a = ap.parse_args()
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    parts = ["a04", "a05", "a03", "underdamped", "integrators"] if "all" in a.part else a.part
+    parts = (["a04", "a05", "a03", "underdamped", "integrators", "hysteresis"] if "all" in a.part
+             else a.part)
     for p in parts:
         t0 = time.time()
         if p == "a04":
@@ -450,6 +489,8 @@ def main():
             part_underdamped(out)
         elif p == "integrators":
             part_integrators(out)
+        elif p == "hysteresis":
+            part_hysteresis(out, a.N)
         print(f"  ({p}: {time.time() - t0:.0f} s)")
 
 

@@ -35,6 +35,30 @@ function(feq_lammps_version lammps_src out_number out_text)
   set(${out_text} "${_day} ${CMAKE_MATCH_2} ${_year}" PARENT_SCOPE)
 endfunction()
 
+# a LAMMPS tree the package supports: 29 Sep 2021 or later, with the
+# package folders the build needs
+set(FEQ_LAMMPS_OLDEST 20210929)
+function(feq_check_lammps lammps_dir number text packages)
+  if(number LESS FEQ_LAMMPS_OLDEST)
+    message(FATAL_ERROR "FRICTION-EQ: the LAMMPS tree ${lammps_dir} is version '${text}' "
+      "(${number}); supported: 29 Sep 2021 (${FEQ_LAMMPS_OLDEST}) and later (tested: 29 Sep 2021, "
+      "4 Feb 2025, 4 Jul 2026)")
+  endif()
+  set(_missing "")
+  foreach(_pkg ${packages})
+    if(NOT IS_DIRECTORY "${lammps_dir}/src/${_pkg}")
+      list(APPEND _missing ${_pkg})
+    endif()
+  endforeach()
+  if(_missing)
+    string(REPLACE ";" ", " _missing "${_missing}")
+    string(REPLACE ";" ", " _all "${packages}")
+    message(FATAL_ERROR "FRICTION-EQ: the LAMMPS tree ${lammps_dir} ('${text}') has no package "
+      "folder for ${_missing} in src/; the build needs ${_all} (bonds, rigid bodies, fix smd and "
+      "fix brownian of the examples and tests): use a full LAMMPS source tree")
+  endif()
+endfunction()
+
 function(feq_add_core)
   file(GLOB _lib CONFIGURE_DEPENDS "${FEQ_PKG_DIR}/lib/*.cpp")
   list(REMOVE_ITEM _lib ${FEQ_GREEN_SOURCES})

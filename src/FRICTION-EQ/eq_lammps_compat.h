@@ -57,6 +57,24 @@ inline void request_full_list(Neighbor *neighbor, Pair *pair, int instance_me)
 #endif
 }
 
+// a full neighbor list for a fix, with its own cutoff (the fix's
+// interaction range, not the pair style's)
+inline void request_fix_full_list(Neighbor *neighbor, Fix *fix, int instance_me, double cutoff)
+{
+#if FEQ_LAMMPS_VERSION >= 20220217
+  (void) instance_me;
+  neighbor->add_request(fix, NeighConst::REQ_FULL)->set_cutoff(cutoff);
+#else
+  const int irequest = neighbor->request(fix, instance_me);
+  neighbor->requests[irequest]->pair = 0;
+  neighbor->requests[irequest]->fix = 1;
+  neighbor->requests[irequest]->half = 0;
+  neighbor->requests[irequest]->full = 1;
+  neighbor->requests[irequest]->cut = 1;
+  neighbor->requests[irequest]->cutoff = cutoff;
+#endif
+}
+
 // owner -> ghost copies of a style's per-atom buffer (pack/unpack_forward_comm)
 // and ghost -> owner sums (pack/unpack_reverse_comm)
 #if FEQ_LAMMPS_VERSION >= 20220107

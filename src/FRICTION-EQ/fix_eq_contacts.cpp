@@ -419,6 +419,9 @@ void FixEQContacts::apply(bool allow_breaks)
           continue;
         }
         st[CS_ANCHOR] = xu - s;
+        // the stretch as every later evaluation at these positions finds
+        // it (x - anchor), so that run 0 or a restart changes nothing
+        s = unwrap.fix(xu - st[CS_ANCHOR]);
       }
       const double fc = st[CS_STIFFNESS] * s;
       st[CS_STRETCH] = s;
@@ -497,9 +500,18 @@ void FixEQContacts::field_step(bool allow_breaks)
     rounds_last = res.rounds;
     if (res.size > 0 && av_flag) record_avalanche(res.size, res.trigger, res.rounds);
   }
-  // the field of the final state, for the output and next_event()
+  // the field of the final state, for the output and next_event(); the
+  // stretches of broken contacts as every later evaluation at these
+  // positions finds them (x - anchor), so that run 0 or a restart changes
+  // nothing (they differ from the engine's by rounding)
   const double *h = field->field_h();
-  for (const int i : members) state[i][CS_FIELD] = state[i][CS_THRESHOLD] > 0.0 ? h[i] : 0.0;
+  const EQUtil::Unwrap unwrap(atom, domain, idir);
+  for (const int i : members) {
+    double *st = state[i];
+    st[CS_FIELD] = st[CS_THRESHOLD] > 0.0 ? h[i] : 0.0;
+    if (st[CS_THRESHOLD] > 0.0 && local_sum[SUM_BREAKS] > 0.0)
+      st[CS_STRETCH] = unwrap.fix(unwrap(i) - st[CS_ANCHOR]);
+  }
 }
 
 void FixEQContacts::record_avalanche(bigint size, bigint trigger, int rounds)

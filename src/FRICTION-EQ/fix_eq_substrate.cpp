@@ -46,7 +46,8 @@ enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE
 
 FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
     FixEQBlocks(lmp, narg, arg), rev_break(0), exact(1), window(0.5), dseed(0), njump(0),
-    jump_step(-1), jump_tag(0), jump_size(0.0), neval(0), reduced_eval(-1), chained(0)
+    jump_step(-1), jump_tag(0), jump_size(0.0), neval(0), reduced_eval(-1), chained(0),
+    fsub_valid(0)
 {
   sitecol = SITE;
   flagcol = DISORDER;
@@ -338,6 +339,10 @@ void FixEQSubstrate::apply()
   // a block that moves by more than half a period in one step skips parts
   // of the substrate force (time step too large)
   const bool check_jump = dynamics && chained;
+  // the setup of a run at the positions of the last evaluation (run N +
+  // run N, a restart) keeps its force, the crossing impulse included:
+  // the run continues as if it had not been split
+  const bool keep = exact && fsub_valid && update->whichflag == 1 && update->setupflag;
   const double half = 0.5 * uc;
 
   for (int i = 0; i < nlocal; i++) {
@@ -361,7 +366,9 @@ void FixEQSubstrate::apply()
     }
     const double kd = st[KC] * st[DISORDER];
     double fs;
-    if (!rev_break) {
+    if (keep && u == u_old) {
+      fs = st[FSUB];
+    } else if (!rev_break) {
       double n, r;
       shape.reduce(u, n, r);
       st[ANCHOR] = n * uc;
@@ -400,6 +407,7 @@ void FixEQSubstrate::apply()
   }
   ++neval;
   chained = update->whichflag == 1;
+  fsub_valid = 1;
 }
 
 /* ----------------------------------------------------------------------
@@ -523,6 +531,7 @@ int FixEQSubstrate::modify_param(int narg, char **arg)
         state[i][KC] = value;
       }
     reduced_eval = -1;    // the energies change with k_c
+    fsub_valid = 0;       // and the force
     return 3;
   }
   if (const int used = modify_velocity(narg, arg)) return used;
@@ -531,4 +540,15 @@ int FixEQSubstrate::modify_param(int narg, char **arg)
   error->all(FLERR, "Fix_modify {}: unknown keyword '{}'; allowed: kc, velocity (and LAMMPS' "
                     "energy, virial, respa)", id, arg[0]);
   return 0;
+}
+
+/* ----------------------------------------------------------------------
+   the per-block state of a restart file: its forces belong to the
+   positions it was written at (see apply())
+------------------------------------------------------------------------- */
+
+void FixEQSubstrate::unpack_restart(int nlocal, int nth)
+{
+  FixEQPerAtom::unpack_restart(nlocal, nth);
+  fsub_valid = 1;
 }

@@ -45,6 +45,7 @@ class FixEQSubstrate : public FixEQBlocks {
   double compute_scalar() override;
   double compute_vector(int) override;
   int modify_param(int, char **) override;
+  void unpack_restart(int, int) override;
 
 
   // columns of the per-atom state (also the per-atom output array):
@@ -84,6 +85,9 @@ class FixEQSubstrate : public FixEQBlocks {
   // any r-RESPA level): the displacements it stored are those of the
   // previous (inner) step, so crossings of this one can be located
   int chained;
+  // the stored substrate forces (FSUB) are those of the stored
+  // displacements (DISP) and the current k_c (see apply())
+  int fsub_valid;
   void reduce();
 
   void init_block(int i) override;

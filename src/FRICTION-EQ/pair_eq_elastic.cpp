@@ -313,11 +313,11 @@ void PairEQElastic::init_style()
   }
   if (nsources == 0)
     error->all(FLERR, "Pair style eq/elastic needs a fix eq/contacts (the contacts and their "
-                      "stretches) or a fix eq/substrate (blocks and their displacements); define "
+                      "stretches), eq/substrate or eq/meso (blocks and their displacements); define "
                       "it before the run");
   if (nsources > 1)
     error->all(FLERR, "Pair style eq/elastic found {} fixes with coordinates ({}); allowed: "
-                      "exactly one fix eq/contacts or eq/substrate", nsources, names);
+                      "exactly one fix eq/contacts, eq/substrate or eq/meso", nsources, names);
   idir = source->source_dir();
   sgroupbit = source->source_groupbit();
   site_distance = source->source_site_distance();
@@ -413,6 +413,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
 {
   double **x = atom->x;
   const int *type = atom->type;
+  const tagint *tag = atom->tag;
   const double *special_lj = force->special_lj;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
@@ -454,6 +455,10 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
       j &= NEIGHMASK;
       const double qj = q[j];
       if (std::isnan(qj)) continue;
+      // a periodic image of the atom itself is the same contact or block:
+      // no interaction (it would only enter K_i and the re-forming of a
+      // broken contact, as if its own stretch stayed behind)
+      if (tag[j] == tag[i]) continue;
       const int jtype = type[j];
       double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
       if (site_distance) del[d] -= qi - qj;
@@ -463,7 +468,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
       pj.push_back(j);
       pk.push_back(k);
       const double dq = qi - qj;
-      if (site_distance && std::fabs(dq) > dubig) {
+      if (site_distance && k != 0.0 && std::fabs(dq) > dubig) {
         dubig = std::fabs(dq);
         ibig = i;
         jbig = j;
@@ -530,7 +535,7 @@ void PairEQElastic::pair_field(bool /*want_virial*/)
     for (int m = fr[2 * i]; m < fr[2 * i + 1]; m++) {
       const double dq = qi - q[jv[m]];
       hi += kv[m] * dq;
-      if (std::fabs(dq) > dubig) {
+      if (kv[m] != 0.0 && std::fabs(dq) > dubig) {
         dubig = std::fabs(dq);
         ibig = i;
         jbig = jv[m];
@@ -547,7 +552,9 @@ void PairEQElastic::skin_error(int i, int j, double du)
   error->one(FLERR,
              "Pair eq/elastic: the displacements of coupled blocks {} and {} differ by {:.6g}, "
              "more than half the neighbor skin {}: coupled pairs may be missing from the neighbor "
-             "list; raise the skin (neighbor SKIN bin) above twice the largest difference",
+             "list; raise the skin (neighbor SKIN bin) above twice the largest difference, or, "
+             "if the blocks were close a few steps ago, the integration is unstable: reduce the "
+             "time step (overdamped: dt < 2 gamma/(4 g + k_c + K))",
              atom->tag[i], atom->tag[j], du, neighbor->skin);
 }
 
@@ -638,10 +645,12 @@ void PairEQElastic::drift_check()
   std::vector<double> hold(h, h + nlocal);
   rebuild(true);
   ++n_check;
+  // the scale of h: |h| and the size of its terms, K |q| (rigidly moving
+  // atoms have h ~ 0 but terms of K |q| each)
   for (int i = 0; i < nlocal; i++) {
     if (std::isnan(q[i])) continue;
     drift_max = std::fmax(drift_max, std::fabs(hold[i] - h[i]));
-    hscale_max = std::fmax(hscale_max, std::fabs(h[i]));
+    hscale_max = std::fmax(hscale_max, std::fmax(std::fabs(h[i]), ksum[i] * std::fabs(q[i])));
   }
 }
 
@@ -687,7 +696,8 @@ void PairEQElastic::field_report()
   MPI_Allreduce(counts, sums, 2, MPI_LMP_BIGINT, MPI_SUM, world);
   if (comm->me == 0 && n_update > 0) {
     std::string drift = n_check > 0
-        ? fmt::format("{} drift checks: max |h_incremental - h_full| = {:.3g} (max |h| = {:.3g})",
+        ? fmt::format("{} drift checks: max |h_incremental - h_full| = {:.3g} (scale of h: "
+                      "{:.3g})",
                       n_check, all[0], all[1])
         : (check_every > 0 ? fmt::format("no drift check (one every {} updates)", check_every)
                            : std::string("no drift check (check 0)"));
@@ -697,7 +707,7 @@ void PairEQElastic::field_report()
                    n_update, n_uniform, n_rebuild, n_nonuniform, sums[0], drift);
     if (n_check > 0 && all[0] > 1e-9 * all[1])
       error->warning(FLERR, "Pair eq/elastic: the incremental field drifted by {:.3g} from the "
-                            "recomputed one (max |h| = {:.3g}); lower the check interval "
+                            "recomputed one (scale of h {:.3g}); lower the check interval "
                             "(pair_style eq/elastic rcut check N)", all[0], all[1]);
   }
   n_update = n_uniform = n_rebuild = n_nonuniform = n_change = n_check = 0;

@@ -173,8 +173,8 @@ TEST_F(EQInteractErrors, PairNeedsContactsAndMixing)
   command("fix d all eq/contacts 1.0 6 threshold uniform 0.75 1.25");
   END_HIDE_OUTPUT();
   TEST_FAILURE(".*ERROR: Pair style eq/elastic found 2 fixes with coordinates \\(fix c "
-               "eq/contacts, fix d eq/contacts\\); allowed: exactly one fix eq/contacts or "
-               "eq/substrate.*",
+               "eq/contacts, fix d eq/contacts\\); allowed: exactly one fix eq/contacts, "
+               "eq/substrate or eq/meso.*",
                command("run 0 post no"););
   BEGIN_HIDE_OUTPUT();
   command("unfix d");

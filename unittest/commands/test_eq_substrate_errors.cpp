@@ -296,8 +296,8 @@ TEST_F(EQSubstrateErrors, PairWithBlocks)
     command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25");
   });
   TEST_FAILURE(".*ERROR: Pair style eq/elastic found 2 fixes with coordinates \\(fix s "
-               "eq/substrate, fix c eq/contacts\\); allowed: exactly one fix eq/contacts or "
-               "eq/substrate.*",
+               "eq/substrate, fix c eq/contacts\\); allowed: exactly one fix eq/contacts, "
+               "eq/substrate or eq/meso.*",
                command("run 0 post no"););
   HIDE_OUTPUT([&] {
     command("unfix c");

@@ -108,3 +108,41 @@ def test_tools_track_kinks_in_a_lammps_dump(tmp_path):
     assert arr.shape == (N, len(t)) and extent[1] == t[-1]
     fig = fkme.plot_spacetime(t, d["vx"], kinks=tracks)
     fig.savefig(tmp_path / "map.png")
+
+
+def test_hysteresis_loop(tmp_path):
+    """The paper's outlook: the driven FK-ME chain shows hysteresis.  The
+    driving force f = K X_s rises (v = 1e-4) until the weak pair nucleates
+    kinks at f_ini (the static chain's threshold), then falls (v_b =
+    -1e-3): on the way up the chain is pinned (no slip) below f_ini, on
+    the way down the running kinks keep the chain sliding far below f_ini,
+    down to the discrete depinning force f_+ (> Griffith f_min) where they
+    stop.  The arrest lags f_+ by the ramp during the last hop: at most
+    K |v_b| times the time of a hop near f_+ (~ a/v_k with v_k -> 0; 0.02
+    in f covers hops of up to 290 time units)."""
+    N, g, vb = 1000, 25.0, -3e-3
+    fini = run.f_nucleation(N, g, 0.5)
+    fm, fp = fkme.discrete_depinning_force(g, KC, UC, K)
+    r = run.protocol(tmp_path, N, g, vb, f0=fini - 5e-3, dump=0, every=100)
+    s, ld = r["series"], r["load"]
+    t, f, v, slips = s["TimeStep"] * r["dt"], s["v_f"], s["v_vmean"], s["v_slips"]
+    # up: pinned below the nucleation force (every block slower than the
+    # ramp's overdamped creep K v m eta/(kc + K) = 7e-4 sets the halt at 1e-3)
+    assert len(ld["v_f"]) > 10
+    assert np.all(ld["v_vmx"] < 1e-3) and ld["v_f"].max() <= fini + 1.5e-3
+    # down: the chain slides (slips keep coming) well below f_ini
+    sliding = np.gradient(slips, t) > 0
+    assert f[sliding].min() < fini - 0.25, f[sliding].min()
+    farr = run.arrest_force(r)
+    assert fp - 0.005 < farr < fp + 0.02, (farr, fp)
+    assert fp > fkme.f_min(KC, UC, K) + 0.03    # the discrete threshold, not Griffith
+    # the loop: at the same f between f_+ + 0.05 and f_ini the chain is
+    # pinned on the way up (mean velocity: the creep K v/(kc + K) = 6.5e-6)
+    # and slides on the way down: the mean velocity exceeds the stage's
+    # backward creep K v_b/(kc + K) by the kinks' 2 v_k jump / N
+    band = (f > fp + 0.05) & (f < fini - 0.01)
+    assert band.sum() > 10
+    v_up = np.interp(f[band], ld["v_f"], ld["v_vmean"])
+    vbar = fkme.background_velocity(vb, KC, K)
+    excess = v[band] - vbar
+    assert np.all(v_up < 1e-5) and np.all(excess > 2e-5), (v_up.max(), excess.min())

@@ -1,0 +1,113 @@
+#!/usr/bin/python3
+"""Benchmark of fix eq/meso (lambda_c blocks with their own master equation).
+
+1. Time against error: blocks moved rigidly by dX = 0.01 per step
+   (realistic thresholds x_s = 1, contacts re-forming unstretched; the
+   increments are not multiples of the grid), F(X)/(N_lambda k_c) on
+   X in [0, 6] against the converged master equation (eq-me dx 1e-3 with
+   Richardson extrapolation), for grid spacings du = 0.24 sd ... sd/32 (sd:
+   standard deviation of the thresholds); cost per block-step from 1000
+   blocks.  The default grid of the fix (sd/8) is chosen from this table.
+2. Cost per block-step against the number of blocks N = 1e3 ... 1e5 and
+   the number of MPI ranks, at the default grid, with and without
+   screening (nearest neighbours of a square lattice).
+
+  ./bench_meso.py                 both tables
+  ./bench_meso.py --part grid     only the first
+"""
+import argparse
+import re
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+sys.path.insert(0, str(ROOT / "tools"))
+import eqtools  # noqa: E402
+from eqtools import fkme  # noqa: E402
+
+MESO = ROOT / "unittest" / "python" / "inputs" / "in.meso"
+SPEC = "threshold realistic 1.0 reform delta 0.0"
+SD = 0.4825529    # standard deviation of the realistic thresholds, x_s = 1
+
+
+def loop_time(log):
+    return float(re.findall(r"Loop time of ([0-9.eE+-]+)", log)[-1])
+
+
+def grid_table(out, dX=0.01, xmax=6.0):
+    eqtools.run_eqme(SPEC.split() + ["dx", 0.001, "xmax", xmax + 0.1, "force", "me.dat"], cwd=out)
+    me = eqtools.load(Path(out) / "me.dat")
+    nsteps = int(round(xmax / dX))
+    print(f"time against error: realistic thresholds, dX = {dX} per step, X in [0, {xmax}]; "
+          f"error of F/(N_lambda k_c) against eq-me (dx 1e-3, Richardson); cost from 1000 blocks")
+    print(f"{'du/sd':>7} {'du':>8} {'doubles':>8} {'max error':>10} {'rms error':>10} "
+          f"{'us/block-step':>13}")
+    for frac in (0.24, 0.125, 0.0625, 0.03125):
+        du = frac * SD
+        d = Path(out) / f"grid{frac}"
+        d.mkdir(parents=True, exist_ok=True)
+        # accuracy: one block, F every step
+        log = eqtools.run_lammps(MESO, {"extra": f"grid {du:.10g}", "contacts": SPEC, "dX": dX,
+                                        "nsteps": nsteps, "nx": 1, "ny": 1, "every": 1, "out": d},
+                                 cwd=d)
+        width = int(re.search(r"\((\d+) doubles per block\)", log).group(1))
+        steps, dd = fkme.read_dump(d / "blocks.dump")
+        X, F = dd["f_m[1]"][:, 0], dd["f_m[2]"][:, 0] / 100.0
+        err = F - np.interp(X, me[:, 0], me[:, 1])
+        # cost: 1000 blocks, no per-step output
+        log = eqtools.run_lammps(MESO, {"extra": f"grid {du:.10g}", "contacts": SPEC, "dX": dX,
+                                        "nsteps": nsteps, "nx": 40, "ny": 25, "every": nsteps,
+                                        "out": d}, cwd=d)
+        us = 1e6 * loop_time(log) / (nsteps * 1000)
+        print(f"{frac:>7.4g} {du:>8.4g} {width:>8d} {np.max(np.abs(err)):>10.2e} "
+              f"{np.sqrt(np.mean(err ** 2)):>10.2e} {us:>13.2f}", flush=True)
+
+
+def size_table(out, sizes, ranks, dX=0.01, nsteps=300):
+    print(f"\ncost per block-step at the default grid (sd/8), realistic thresholds, dX = {dX}, "
+          f"X in [0, {dX * nsteps:g}]; screening: kappa N_lambda = 0.2 between nearest neighbours "
+          f"(rcut 1.01)")
+    print(f"{'N':>8} {'ranks':>5} {'steps':>6} {'us/b-step':>10} {'screened':>10}")
+    for n in sizes:
+        ny = max(1, int(round(n ** 0.5)))
+        nx = max(1, n // ny)
+        for r in ranks:
+            row = []
+            for extra in ("", "screen 0.002 1.0 1.01 window 0.2"):
+                d = Path(out) / f"n{n}_r{r}_{'s' if extra else 'p'}"
+                d.mkdir(parents=True, exist_ok=True)
+                best = None
+                for _ in range(2):
+                    log = eqtools.run_lammps(MESO, {"extra": extra, "contacts": SPEC, "dX": dX,
+                                                    "nsteps": nsteps, "nx": nx, "ny": ny,
+                                                    "every": nsteps, "out": d}, nprocs=r, cwd=d)
+                    t = loop_time(log)
+                    best = t if best is None else min(best, t)
+                row.append(1e6 * best / (nsteps * nx * ny))
+            print(f"{nx * ny:>8} {r:>5} {nsteps:>6} {row[0]:>10.2f} {row[1]:>10.2f}", flush=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--part", choices=["grid", "size", "all"], default="all")
+    ap.add_argument("--sizes", default="1e3,1e4,1e5")
+    ap.add_argument("--ranks", default="1,2")
+    ap.add_argument("--out", default=str(HERE / "out" / "meso"))
+    a = ap.parse_args()
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    t0 = time.time()
+    if a.part in ("grid", "all"):
+        grid_table(out)
+    if a.part in ("size", "all"):
+        size_table(out, [int(float(v)) for v in a.sizes.split(",")],
+                   [int(v) for v in a.ranks.split(",")])
+    print(f"({time.time() - t0:.0f} s)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,647 @@
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: fix eq/meso
+
+   lambda_c blocks of the far zone (Braun, Peyrard, Stryzheus, Tosatti,
+   "Collective effects at frictional interfaces", Eqs. crack.eq03x-
+   crack.eq07, screening scr.eq01-scr.eq05).  Each block's distribution of
+   contact stretches lives in its per-atom state and is advanced by the
+   LAMMPS-free kernel lib/eq_meso with the block's own displacement
+   increment; this fix adapts it to LAMMPS atoms, forces, output,
+   exchange and restart, and computes the screening from the neighbouring
+   blocks' breaking rates.
+------------------------------------------------------------------------- */
+
+#include "fix_eq_meso.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "group.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "respa.h"
+#include "update.h"
+#include "utils.h"
+
+#include "eq_distribution.h"
+#include "eq_lammps_compat.h"
+#include "eq_lammps_util.h"
+#include "eq_meso.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace {
+const char *KEYWORDS =
+    "threshold, reform, grid, dir, crossing, start, drive, stage, screen, window, check";
+// global vector: sum F, <Gamma>, <eps>, <X>, sum drive force, N, X_s,
+// normalization error of the last check, largest Pi0
+enum { V_FORCE, V_RATE, V_EPS, V_DISP, V_FDRIVE, V_COUNT, V_STAGE, V_NORM, V_PI0, NVEC };
+// the default grid spacing, in standard deviations of the thresholds
+constexpr double GRID_DEFAULT_SD = 0.125;
+// a block's Q may lose this much probability (rounding) before it is an error
+constexpr double NORM_TOLERANCE = 1e-9;
+constexpr int CHECK_DEFAULT = 1000;
+enum { COMM_RATE = 1 };
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
+    FixEQBlocks(lmp, narg, arg), nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
+    lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), pi0_local(0.0), list_stamp(-1), comm_mode(0),
+    check_every(CHECK_DEFAULT), norm_max(0.0), neval(0), reduced_eval(-1)
+{
+  sitecol = M_SITE;
+  flagcol = M_FLAG;
+  for (double &v : local_sum) v = 0.0;
+  for (double &v : global_sum) v = 0.0;
+  if (narg < 7)
+    error->all(FLERR, "Illegal fix eq/meso command: expected 'fix ID group eq/meso Nlambda kc "
+                      "threshold <style> <values> [keyword values ...]'");
+  if (!atom->tag_enable) error->all(FLERR, "Fix eq/meso requires atom IDs (atom_modify id yes)");
+
+  nlambda = EQUtil::numeric(lmp, "Fix eq/meso: Nlambda", arg[3]);
+  if (!(nlambda > 0.0) || !std::isfinite(nlambda))
+    error->all(FLERR, "Fix eq/meso: Nlambda (contacts per block) must be finite and > 0 (got {})",
+               arg[3]);
+  kc = EQUtil::numeric(lmp, "Fix eq/meso: kc", arg[4]);
+  if (!(kc > 0.0) || !std::isfinite(kc))
+    error->all(FLERR, "Fix eq/meso: kc must be finite and > 0 (got {})", arg[4]);
+
+  const std::vector<std::string> args(arg, arg + narg);
+  const feq::NumberParser lmp_number = EQUtil::number_parser(lmp);
+  auto value = [&](size_t &pos, const std::string &what) -> double {
+    if (pos >= args.size()) throw feq::SpecError(what + ": missing value");
+    const std::string &tok = args[pos++];
+    double v;
+    try {
+      v = lmp_number(tok);
+    } catch (const feq::SpecError &) {
+      throw feq::SpecError(what + ": expected a number, got '" + tok + "'");
+    }
+    if (!std::isfinite(v))
+      throw feq::SpecError(what + ": expected a finite number, got '" + tok + "'");
+    return v;
+  };
+
+  feq::DistributionSpec threshold, reform;
+  reform.dist = feq::make_delta(0.0);
+  reform.text = "delta 0";
+  bool have_threshold = false;
+  double du = 0.0, stage0 = 0.0;
+  feq::Crossing crossing = feq::Crossing::EXACT;
+  feq::MEStart start = feq::MEStart::RELAXED;
+  size_t iarg = 5;
+  try {
+    while (iarg < args.size()) {
+      const std::string &kw = args[iarg++];
+      if (parse_block_keyword(kw, args, iarg, value, stage0)) continue;
+      if (kw == "threshold") {
+        threshold = feq::parse_distribution(feq::Role::THRESHOLD, args, iarg, lmp_number,
+                                            EQUtil::file_loader(lmp));
+        have_threshold = true;
+      } else if (kw == "reform") {
+        reform = feq::parse_distribution(feq::Role::REFORM, args, iarg, lmp_number,
+                                         EQUtil::file_loader(lmp));
+      } else if (kw == "grid") {
+        du = value(iarg, "grid du");
+        if (!(du > 0.0)) throw feq::SpecError("grid: du must be > 0 (got " + args[iarg - 1] + ")");
+      } else if (kw == "crossing") {
+        if (iarg >= args.size()) throw feq::SpecError("crossing: missing value; allowed: exact, step");
+        const std::string &v = args[iarg++];
+        if (v == "exact") crossing = feq::Crossing::EXACT;
+        else if (v == "step") crossing = feq::Crossing::STEP;
+        else throw feq::SpecError("crossing: unknown value '" + v + "'; allowed: exact, step");
+      } else if (kw == "start") {
+        if (iarg >= args.size()) throw feq::SpecError("start: missing value; allowed: relaxed, reform");
+        const std::string &v = args[iarg++];
+        if (v == "relaxed") start = feq::MEStart::RELAXED;
+        else if (v == "reform") start = feq::MEStart::REFORM;
+        else throw feq::SpecError("start: unknown value '" + v + "'; allowed: relaxed, reform");
+      } else if (kw == "screen") {
+        kappa = value(iarg, "screen kappa");
+        lambda_c = value(iarg, "screen lambda_c");
+        rcut = value(iarg, "screen rcut");
+        if (!(kappa >= 0.0)) throw feq::SpecError("screen: kappa must be >= 0 (got " + args[iarg - 3] + ")");
+        if (!(lambda_c > 0.0)) throw feq::SpecError("screen: lambda_c must be > 0 (got " + args[iarg - 2] + ")");
+        if (!(rcut > 0.0)) throw feq::SpecError("screen: rcut must be > 0 (got " + args[iarg - 1] + ")");
+        screen_flag = 1;
+      } else if (kw == "window") {
+        window = value(iarg, "window w");
+        if (!(window > 0.0)) throw feq::SpecError("window: w must be > 0 (got " + args[iarg - 1] + ")");
+      } else if (kw == "check") {
+        if (iarg >= args.size()) throw feq::SpecError("check: missing value (steps, 0: never)");
+        const std::string &tok = args[iarg++];
+        if (!utils::is_integer(tok)) throw feq::SpecError("check: expected an integer, got '" + tok + "'");
+        const bigint n = EQUtil::bnumeric(lmp, "Fix eq/meso check", tok);
+        if (n < 0 || n > MAXSMALLINT)
+          throw feq::SpecError("check: steps must be an integer >= 0 (0: never; got " + tok + ")");
+        check_every = (int) n;
+      } else {
+        throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
+      }
+    }
+    if (!have_threshold)
+      throw feq::SpecError(std::string(": the threshold keyword is required; allowed styles: ") +
+                           feq::role_styles(feq::Role::THRESHOLD));
+    if (du == 0.0) du = GRID_DEFAULT_SD * std::sqrt(threshold.dist->variance());
+    model.reset(new feq::MesoModel(threshold.dist, reform.dist, du, crossing, start));
+    // what the per-block state depends on, as a 52-bit FNV-1a hash (exact
+    // in a double) for the restart file
+    const std::string sig = fmt::format("{}|{}|{:.17g}|{}|{}", threshold.text, reform.text, du,
+                                        crossing == feq::Crossing::EXACT ? "exact" : "step",
+                                        start == feq::MEStart::RELAXED ? "relaxed" : "reform");
+    uint64_t hsh = 1469598103934665603ULL;
+    for (const unsigned char c : sig) hsh = (hsh ^ c) * 1099511628211ULL;
+    signature = (double) (hsh & ((1ULL << 52) - 1));
+  } catch (const feq::SpecError &e) {
+    const std::string msg = e.what();
+    error->all(FLERR, "Fix eq/meso{}{}", msg.rfind(':', 0) == 0 ? "" : " ", msg);
+  }
+  if (stage0 != 0.0 && !drive_flag)
+    error->all(FLERR, "Fix eq/meso: stage needs the drive keyword (the stage holds the driving "
+                      "springs)");
+  if (idir == 2 && domain->dimension == 2)
+    error->all(FLERR, "Fix eq/meso: dir z is not allowed in a 2d simulation; allowed: x, y");
+  if (group->dynamic[igroup])
+    error->all(FLERR, "Fix eq/meso: group {} is dynamic; blocks need a static group",
+               group->names[igroup]);
+  const bigint nblocks = group->count(igroup);
+  if (nblocks == 0) error->all(FLERR, "Fix eq/meso: group {} has no atoms", group->names[igroup]);
+  xc = threshold.dist->mean();
+  if (window == 0.0) window = xc;
+  stage = stage0;
+
+  if (comm->me == 0)
+    utils::logmesg(lmp, "fix eq/meso: {} blocks along {} of N_lambda = {} contacts (k_c = {}); "
+                        "thresholds {} (<x_s> = {:.6g}); reform {}; grid {:.6g} ({} doubles per "
+                        "block); {}{}\n",
+                   nblocks, "xyz"[idir], nlambda, kc, threshold.text, xc, reform.text,
+                   model->grid(), M_HEAD + model->width(),
+                   screen_flag ? fmt::format("screening kappa = {}, lambda_c = {}, rcut = {}",
+                                             kappa, lambda_c, rcut)
+                               : std::string("no screening"),
+                   drive_flag ? fmt::format("; driving springs K = {} to a stage at {} moving at {}",
+                                            kdrive, stage0, vstage)
+                              : std::string());
+
+  restart_global = 1;
+  scalar_flag = 1;
+  vector_flag = 1;
+  size_vector = NVEC;
+  global_freq = 1;
+  extscalar = 1;
+  extvector = -1;
+  extlist = new int[NVEC]{1, 0, 0, 0, 1, 1, 0, 0, 0};
+  respa_level_support = 1;
+  comm_forward = 2;
+  peratom_setup(M_HEAD + model->width(), NOUT);
+
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++)
+    if (atom->mask[i] & groupbit) init_block(i);
+}
+
+FixEQMeso::~FixEQMeso()
+{
+  delete[] extlist;
+}
+
+int FixEQMeso::setmask()
+{
+  int mask = 0;
+  mask |= POST_INTEGRATE;
+  mask |= POST_INTEGRATE_RESPA;
+  mask |= PRE_FORCE;
+  mask |= PRE_FORCE_RESPA;
+  mask |= MIN_PRE_FORCE;
+  mask |= POST_FORCE;
+  mask |= POST_FORCE_RESPA;
+  mask |= MIN_POST_FORCE;
+  mask |= POST_RUN;
+  return mask;
+}
+
+void FixEQMeso::init()
+{
+  init_blocks();
+  if (screen_flag) EQCompat::request_fix_full_list(neighbor, this, instance_me, rcut);
+  list_stamp = -1;
+}
+
+void FixEQMeso::init_list(int /*id*/, NeighList *ptr)
+{
+  list = ptr;
+}
+
+/* ----------------------------------------------------------------------
+   a block first seen in the group: its site is where it is now, its
+   contacts relaxed (or stretched by R with start reform)
+------------------------------------------------------------------------- */
+
+void FixEQMeso::init_block(int i)
+{
+  double *st = state[i];
+  memset(st, 0, M_HEAD * sizeof(double));
+  st[M_SITE] = EQUtil::Unwrap(atom, domain, idir)(i);
+  st[M_ATTACHED] = 1.0;
+  model->init(st + M_HEAD, 0.0);
+  st[M_FLAG] = 1.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixEQMeso::setup(int vflag)
+{
+  if (utils::strmatch(update->integrate_style, "^verlet")) {
+    post_force(vflag);
+  } else {
+    ((Respa *) update->integrate)->copy_flevel_f(ilevel_respa);
+    post_force_respa(vflag, ilevel_respa, 0);
+    ((Respa *) update->integrate)->copy_f_flevel(ilevel_respa);
+  }
+  check_normalization();
+}
+
+void FixEQMeso::min_setup(int /*vflag*/)
+{
+  apply(false);
+}
+
+void FixEQMeso::post_force(int /*vflag*/)
+{
+  apply(true);
+  if (screen_flag) screening();
+  if (check_every > 0 && update->ntimestep % check_every == 0) check_normalization();
+}
+
+void FixEQMeso::post_force_respa(int vflag, int ilevel, int /*iloop*/)
+{
+  if (ilevel == ilevel_respa) post_force(vflag);
+}
+
+// during minimization the blocks' contacts hold: the force is the elastic
+// response of the attached contacts to the block's displacement
+void FixEQMeso::min_post_force(int /*vflag*/)
+{
+  apply(false);
+}
+
+/* ----------------------------------------------------------------------
+   each block's master equation to its current displacement (advance), or
+   its elastic response without breaking (minimization); forces -F_n and
+   the driving springs
+------------------------------------------------------------------------- */
+
+void FixEQMeso::apply(bool advance)
+{
+  double *const *const f = atom->f;
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int d = idir;
+  const EQUtil::Unwrap unwrap(atom, domain, d);
+  const double nk = nlambda * kc;
+  for (double &v : local_sum) v = 0.0;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double *const st = state[i];
+    if (st[M_FLAG] == 0.0) init_block(i);
+    double *const q = st + M_HEAD;
+    const double X = unwrap.fix(unwrap(i) - st[M_SITE]);
+    if (!std::isfinite(X))
+      error->one(FLERR, "Fix eq/meso: displacement of block {} is {} (numerical instability: check "
+                        "the timestep against N_lambda k_c, the coupling and the driving springs)",
+                 atom->tag[i], X);
+    double F;
+    if (advance) {
+      const double X0 = model->position(q);
+      double broken;
+      try {
+        broken = model->advance(q, X, st[M_EPS]);
+      } catch (const std::exception &e) {
+        error->one(FLERR, "Fix eq/meso: block {}: {}", atom->tag[i], e.what());
+      }
+      // the breaking rate per unit displacement, averaged over the last
+      // `window` of the block's forward motion (exponential weight):
+      // a burst of breaks within one step counts as 1/window, a steady
+      // rate Gamma as Gamma
+      if (X > X0) {
+        const double a = std::exp(-(X - X0) / window);
+        st[M_RATE] = a * st[M_RATE] + broken * (1.0 - a) / (X - X0);
+      }
+      F = nk * model->mean_stretch(q);
+    } else {
+      F = nk * (model->mean_stretch(q) + (X - model->position(q)) * model->attached(q));
+    }
+    const double att = model->attached(q);
+    const double fd = drive_flag ? kdrive * (stage - X) : 0.0;
+    f[i][d] += fd - F;
+    st[M_DISP] = X;
+    st[M_FORCE] = F;
+    st[M_FDRIVE] = fd;
+    st[M_ATTACHED] = att;
+    local_sum[S_FORCE] += F;
+    local_sum[S_RATE] += st[M_RATE];
+    local_sum[S_EPS] += st[M_EPS];
+    local_sum[S_DISP] += X;
+    local_sum[S_FDRIVE] += fd;
+    local_sum[S_COUNT] += 1.0;
+  }
+  ++neval;
+}
+
+/* ----------------------------------------------------------------------
+   screening: the blocks of the neighbor list (within rcut + skin) of each
+   local block, found after every list build and sorted by atom ID (ties:
+   periodic images, by their offset), so that eps is the same sum in the
+   same order on any number of ranks and whatever the list's schedule
+------------------------------------------------------------------------- */
+
+void FixEQMeso::partners()
+{
+  const double need = rcut + neighbor->skin;
+  if (comm->get_comm_cutoff() < need)
+    error->all(FLERR, "Fix eq/meso screen: rcut {} + neighbor skin {} exceeds the ghost atom "
+                      "cutoff {}; partners would be missed: set comm_modify cutoff {} or more",
+               rcut, neighbor->skin, comm->get_comm_cutoff(), need);
+  double **x = atom->x;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  struct Partner {
+    tagint tag;
+    double del[3];
+    int j;
+  };
+  std::vector<Partner> mine;
+  std::vector<int> range(2 * (size_t) nlocal, 0);
+  std::vector<int> pj2;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    if (!(mask[i] & groupbit)) continue;
+    mine.clear();
+    const int *jlist = list->firstneigh[i];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      if (j >= nall || !(mask[j] & groupbit)) continue;
+      mine.push_back({tag[j], {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]}, j});
+    }
+    std::sort(mine.begin(), mine.end(), [](const Partner &a, const Partner &b) {
+      if (a.tag != b.tag) return a.tag < b.tag;
+      for (int k = 0; k < 3; k++)
+        if (a.del[k] != b.del[k]) return a.del[k] < b.del[k];
+      return false;
+    });
+    range[2 * i] = (int) pj2.size();
+    for (const Partner &p : mine) pj2.push_back(p.j);
+    range[2 * i + 1] = (int) pj2.size();
+  }
+  first.swap(range);
+  pj.swap(pj2);
+  list_stamp = neighbor->ncalls;
+}
+
+/* ----------------------------------------------------------------------
+   eps_n = x_c sum_m Gamma_m Pi_mn from the rates of this step, for the
+   next one; Pi_mn at the distance of the sites now (blocks move along dir
+   from their sites; along the other directions with their positions)
+------------------------------------------------------------------------- */
+
+void FixEQMeso::screening()
+{
+  const bool rebuilt = neighbor->ago == 0 || list_stamp < 0;
+  if (rebuilt) partners();
+  const int nlocal = atom->nlocal;
+  if ((int) cbuf.size() < 2 * atom->nmax) cbuf.resize(2 * (size_t) atom->nmax);
+  const int *mask = atom->mask;
+  for (int i = 0; i < nlocal; i++) {
+    const bool block = (mask[i] & groupbit) != 0;
+    cbuf[2 * i] = block ? state[i][M_RATE] : 0.0;
+    cbuf[2 * i + 1] = block ? state[i][M_DISP] : 0.0;
+  }
+  comm_mode = COMM_RATE;
+  EQCompat::forward_comm(comm, (Fix *) this);
+
+  double **x = atom->x;
+  const int d = idir;
+  const double cutsq = rcut * rcut * (1.0 + 2e-12);
+  const double scale = nlambda * kappa;
+  double pimax = 0.0, dxbig = 0.0;
+  int iworst = -1, ibig = -1, jbig = -1;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double Xi = cbuf[2 * i + 1];
+    double e = 0.0, pi0 = 0.0;
+    for (int m = first[2 * i]; m < first[2 * i + 1]; m++) {
+      const int j = pj[m];
+      const double dX = Xi - cbuf[2 * j + 1];
+      double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      del[d] -= dX;    // sites
+      const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+      if (rsq > cutsq) continue;
+      if (!(rsq > 0.0))
+        error->one(FLERR, "Fix eq/meso screen: blocks {} and {} share a site", atom->tag[i],
+                   atom->tag[j]);
+      if (std::fabs(dX) > dxbig) {
+        dxbig = std::fabs(dX);
+        ibig = i;
+        jbig = j;
+      }
+      const double ratio = lambda_c / std::sqrt(rsq);
+      const double pi = scale * ratio * ratio * ratio;
+      pi0 += pi;
+      e += pi * cbuf[2 * j];
+    }
+    state[i][M_EPS] = xc * e;
+    if (pi0 > pimax) {
+      pimax = pi0;
+      iworst = i;
+    }
+  }
+  // partners come from the list of the current positions: their
+  // displacements may differ by less than the skin (with a margin of a
+  // factor 2 for the motion until the next list build)
+  if (dxbig > 0.5 * neighbor->skin)
+    error->one(FLERR, "Fix eq/meso screen: the displacements of blocks {} and {} differ by {:.6g}, "
+                      "more than half the neighbor skin {}: partners may be missing from the "
+                      "neighbor list; raise the skin (neighbor SKIN bin) above twice the largest "
+                      "difference", atom->tag[ibig], atom->tag[jbig], dxbig, neighbor->skin);
+  // Pi0 = sum_m Pi_mn < 1, checked after every list build (one reduction)
+  pi0_local = pimax;
+  if (rebuilt) {
+    struct {
+      double value;
+      int rank;
+    } in{pimax, comm->me}, out{0.0, 0};
+    MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+    pi0_max = out.value;
+    if (pi0_max >= 1.0) {
+      double who = iworst >= 0 ? (double) atom->tag[iworst] : 0.0;
+      MPI_Bcast(&who, 1, MPI_DOUBLE, out.rank, world);
+      error->all(FLERR, "Fix eq/meso screen: Pi0 = sum_m Pi_mn = {:.6g} >= 1 at block {}: no "
+                        "screened solution (eps0 = Pi0/(1 - Pi0) diverges); lower kappa ({}) or "
+                        "rcut ({})", pi0_max, (tagint) who, kappa, rcut);
+    }
+  }
+}
+
+// rate and displacement of each block
+int FixEQMeso::pack_forward_comm(int n, int *list_, double *buf, int /*pbc_flag*/, int * /*pbc*/)
+{
+  for (int i = 0; i < n; i++) {
+    buf[2 * i] = cbuf[2 * list_[i]];
+    buf[2 * i + 1] = cbuf[2 * list_[i] + 1];
+  }
+  return 2 * n;
+}
+
+void FixEQMeso::unpack_forward_comm(int n, int first_, double *buf)
+{
+  if ((int) cbuf.size() < 2 * (first_ + n)) cbuf.resize(2 * (size_t) (first_ + n));
+  for (int i = 0; i < n; i++) {
+    cbuf[2 * (first_ + i)] = buf[2 * i];
+    cbuf[2 * (first_ + i) + 1] = buf[2 * i + 1];
+  }
+}
+
+/* ----------------------------------------------------------------------
+   every block's Q must hold its probability (attached + detached = 1):
+   a loss beyond rounding is an error that names the block
+------------------------------------------------------------------------- */
+
+void FixEQMeso::check_normalization()
+{
+  const int *mask = atom->mask;
+  double worst = 0.0;
+  tagint who = 0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit) || state[i][M_FLAG] == 0.0) continue;
+    const double *q = state[i] + M_HEAD;
+    const double e = model->valid(q) ? model->normalization_error(q) : HUGE_VAL;
+    if (!(e <= worst)) {
+      worst = e;
+      who = atom->tag[i];
+    }
+  }
+  if (!(worst <= NORM_TOLERANCE))
+    error->one(FLERR, "Fix eq/meso: block {} lost the normalization of its distribution of "
+                      "stretches (|int Q - 1| = {:.3g} > {}); the state is corrupt or the grid ({}) "
+                      "is too coarse for the motion", who, worst, NORM_TOLERANCE, model->grid());
+  MPI_Allreduce(&worst, &norm_max, 1, MPI_DOUBLE, MPI_MAX, world);
+}
+
+/* ----------------------------------------------------------------------
+   global restart: the stage (FixEQBlocks) and the signature of what the
+   blocks' states depend on (thresholds, reform, grid, crossing, start)
+------------------------------------------------------------------------- */
+
+void FixEQMeso::write_restart(FILE *fp)
+{
+  const double list[4] = {stage, vstage, (double) drive_flag, signature};
+  if (comm->me == 0) {
+    int size = 4 * sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 4, fp);
+  }
+}
+
+void FixEQMeso::restart(char *buf)
+{
+  const double *list = (const double *) buf;
+  if (list[3] != signature)
+    error->all(FLERR, "Fix eq/meso: the restart file's blocks were written by a fix eq/meso with "
+                      "other thresholds, reform, grid, crossing or start: re-specify it as in the "
+                      "run that wrote them");
+  FixEQBlocks::restart(buf);
+}
+
+/* ----------------------------------------------------------------------
+   per-atom restart data of another grid or distributions would be
+   misread: the count must be this fix's
+------------------------------------------------------------------------- */
+
+void FixEQMeso::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  if (static_cast<int>(extra[nlocal][m]) != ncol + 1)
+    error->one(FLERR, "Fix eq/meso: the restart file holds {} values per block, this fix {}: "
+                      "re-specify it with the thresholds, reform and grid of the run that wrote it",
+               static_cast<int>(extra[nlocal][m]) - 1, ncol);
+  FixEQPerAtom::unpack_restart(nlocal, nth);
+  if (state[nlocal][M_FLAG] != 0.0 && !model->valid(state[nlocal] + M_HEAD))
+    error->one(FLERR, "Fix eq/meso: the restart data of block {} do not match this fix (thresholds, "
+                      "reform or grid differ from the run that wrote them)", atom->tag[nlocal]);
+}
+
+/* ----------------------------------------------------------------------
+   global output, reduced on demand (one Allreduce for all entries)
+------------------------------------------------------------------------- */
+
+void FixEQMeso::reduce()
+{
+  if (reduced_eval == neval) return;
+  MPI_Allreduce(local_sum, global_sum, NSUM, MPI_DOUBLE, MPI_SUM, world);
+  reduced_eval = neval;
+}
+
+double FixEQMeso::compute_scalar()
+{
+  reduce();
+  return global_sum[S_FORCE];
+}
+
+double FixEQMeso::compute_vector(int n)
+{
+  switch (n) {
+    case V_STAGE: return drive_flag ? stage : 0.0;
+    case V_NORM: return norm_max;
+    case V_PI0: {
+      // of this step's distances (reduced on demand)
+      double all = 0.0;
+      MPI_Allreduce(&pi0_local, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+      return all;
+    }
+  }
+  reduce();
+  const double count = global_sum[S_COUNT];
+  switch (n) {
+    case V_FORCE: return global_sum[S_FORCE];
+    case V_RATE: return count > 0.0 ? global_sum[S_RATE] / count : 0.0;
+    case V_EPS: return count > 0.0 ? global_sum[S_EPS] / count : 0.0;
+    case V_DISP: return count > 0.0 ? global_sum[S_DISP] / count : 0.0;
+    case V_FDRIVE: return global_sum[S_FDRIVE];
+    case V_COUNT: return count;
+  }
+  return 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   fix_modify ID velocity v
+------------------------------------------------------------------------- */
+
+int FixEQMeso::modify_param(int narg, char **arg)
+{
+  if (const int used = modify_velocity(narg, arg)) return used;
+  error->all(FLERR, "Fix_modify {}: unknown keyword '{}'; allowed: velocity (and LAMMPS' energy, "
+                    "virial, respa)", id, arg[0]);
+  return 0;
+}
+
+double FixEQMeso::memory_usage()
+{
+  return FixEQPerAtom::memory_usage() +
+      (double) (cbuf.capacity() + qbuf.capacity()) * sizeof(double) +
+      (double) (pj.capacity() + first.capacity()) * sizeof(int);
+}

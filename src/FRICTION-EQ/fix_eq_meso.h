@@ -1,0 +1,105 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   FRICTION-EQ package for LAMMPS: fix eq/meso
+
+   fix ID group eq/meso Nlambda kc threshold <style> <values> [keyword values ...]
+
+   Each atom of the group is a lambda_c block of the far zone (paper Sec.
+   "Far zone", Eqs. crack.eq03x-crack.eq07): it carries its own
+   distribution Q_n(u; X_n) of the stretches of its N_lambda contacts,
+   advanced by the master equation as the block moves (lib/eq_meso), and
+   the interface pulls it back with F_n = N_lambda k_c int u Q_n du.
+   Optional screening (scr.eq01-scr.eq05): the breaking rate of block n
+   sees the forces scaled by 1 + eps_n, eps_n = x_c sum_m Gamma_m Pi_mn,
+   Pi_mn = N_lambda kappa (lambda_c / r_mn)^3 over the blocks within a
+   cutoff.  See doc/src/fix_eq_meso.rst.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(eq/meso,FixEQMeso);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_EQ_MESO_H
+#define LMP_FIX_EQ_MESO_H
+
+#include "eq_fix_blocks.h"
+
+#include <memory>
+#include <vector>
+
+namespace feq {
+class MesoModel;
+}
+
+namespace LAMMPS_NS {
+
+class FixEQMeso : public FixEQBlocks {
+ public:
+  FixEQMeso(class LAMMPS *, int, char **);
+  ~FixEQMeso() override;
+  int setmask() override;
+  void init() override;
+  void init_list(int, class NeighList *) override;
+  void setup(int) override;
+  void min_setup(int) override;
+  void post_force(int) override;
+  void post_force_respa(int, int, int) override;
+  void min_post_force(int) override;
+  double compute_scalar() override;
+  double compute_vector(int) override;
+  int modify_param(int, char **) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+  void unpack_restart(int, int) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  double memory_usage() override;
+
+  // columns of the per-atom state; the first NOUT are the per-atom output:
+  // displacement X, friction force F = N_lambda k_c <u>, breaking rate
+  // Gamma (breaks per contact and unit displacement, averaged over the
+  // last `window` of forward motion),
+  // screening eps, driving-spring force, attached fraction, site; then a
+  // set-up flag and the block's master-equation state (lib/eq_meso)
+  enum { M_DISP, M_FORCE, M_RATE, M_EPS, M_FDRIVE, M_ATTACHED, M_SITE, M_FLAG, M_HEAD };
+  static constexpr int NOUT = M_SITE + 1;
+
+ private:
+  std::unique_ptr<feq::MesoModel> model;
+  double nlambda, kc, xc;    // contacts per block, their stiffness, mean threshold
+  double signature;          // hash of what the blocks' states depend on (restart check)
+  // screening: Pi(r) = nlambda kappa (lambda_c / r)^3 for r <= rcut
+  int screen_flag;
+  double kappa, lambda_c, rcut;
+  double window;       // the breaking rate is averaged over this much displacement
+  class NeighList *list;
+  // the blocks in the neighbor list of each local block (within rcut +
+  // skin), sorted by atom ID so that eps is the same sum on any number of
+  // ranks: pj[first[2i] .. first[2i+1])
+  std::vector<int> first, pj;
+  double pi0_max;      // largest sum_m Pi_mn over the blocks at the last list build
+  double pi0_local;    // largest sum_m Pi_mn of this rank's blocks at the last step
+  bigint list_stamp;   // neighbor->ncalls of the partners (-1: none)
+  int comm_mode;
+  std::vector<double> cbuf;    // forward communication: rate and displacement per atom
+  // normalization check of the blocks' Q every check_every steps
+  int check_every;
+  double norm_max;
+
+  enum { S_FORCE, S_RATE, S_EPS, S_DISP, S_FDRIVE, S_COUNT, NSUM };
+  double local_sum[NSUM], global_sum[NSUM];
+  bigint neval, reduced_eval;
+
+  void init_block(int i) override;
+  void apply(bool advance);
+  void partners();
+  void screening();
+  void check_normalization();
+  void reduce();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

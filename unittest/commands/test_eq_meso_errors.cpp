@@ -1,0 +1,194 @@
+// Bad input to fix eq/meso gives a LAMMPS error that names the command,
+// the keyword and the allowed values; a restart file of another grid is
+// refused; screening with Pi0 >= 1 is refused.
+#include "lammps.h"
+
+#include "atom.h"
+#include "fix.h"
+#include "input.h"
+#include "modify.h"
+
+#include "testing/core.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+
+#include <cstdio>
+#include <mpi.h>
+
+bool verbose = false;
+
+namespace {
+
+class EQMesoErrors : public LAMMPSTest {
+ protected:
+  void InitSystem() override
+  {
+    HIDE_OUTPUT([&] {
+      command("units lj");
+      command("dimension 2");
+      command("atom_style atomic");
+      command("lattice sq 1.0");
+      command("region box block 0 6 0 3 -0.5 0.5");
+      command("create_box 1 box");
+      command("create_atoms 1 box");
+      command("mass 1 1.0");
+      command("group nobody empty");
+      command("comm_modify cutoff 2.0");
+    });
+  }
+  void fix(const std::string &rest) { command("fix m all eq/meso " + rest); }
+};
+
+const char *T = "threshold uniform 0.75 1.25";
+
+}    // namespace
+
+TEST_F(EQMesoErrors, ValidCommandsAreAccepted)
+{
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T);
+    command("unfix m");
+    fix("50 2.0 threshold realistic 1.0 reform gaussian 0.05 0.1 grid 0.05 dir y crossing step "
+        "start reform drive 0.5 1e-3 stage 2.0 screen 0.001 1.0 1.5 window 0.2 check 10");
+    command("fix_modify m velocity -1e-3");
+    command("run 0 post no");
+  });
+  ASSERT_NE(lmp->modify->find_fix("m"), -1);
+}
+
+TEST_F(EQMesoErrors, Arguments)
+{
+  TEST_FAILURE(".*ERROR: Illegal fix eq/meso command: expected 'fix ID group eq/meso Nlambda kc "
+               "threshold <style> <values> \\[keyword values ...\\]'.*",
+               fix("100 1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso: Nlambda \\(contacts per block\\) must be finite and > 0 "
+               "\\(got 0\\).*",
+               fix(std::string("0 1.0 ") + T););
+  TEST_FAILURE(".*ERROR: Fix eq/meso: Nlambda: expected a number, got 'many'.*",
+               fix(std::string("many 1.0 ") + T););
+  TEST_FAILURE(".*ERROR: Fix eq/meso: kc must be finite and > 0 \\(got -1\\).*",
+               fix(std::string("100 -1 ") + T););
+  TEST_FAILURE(".*ERROR: Fix eq/meso: kc must be finite and > 0 \\(got 1e400\\).*",
+               fix(std::string("100 1e400 ") + T););
+  TEST_FAILURE(".*ERROR: Fix eq/meso: the threshold keyword is required; allowed styles: uniform, "
+               "gaussian, realistic, table.*",
+               fix("100 1.0 reform delta 0.0 grid 0.01"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso unknown keyword 'speed'; allowed: threshold, reform, grid, "
+               "dir, crossing, start, drive, stage, screen, window, check.*",
+               fix(std::string("100 1.0 ") + T + " speed 2"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso grid: du must be > 0 \\(got -0.01\\).*",
+               fix(std::string("100 1.0 ") + T + " grid -0.01"););
+  // a grid that does not resolve the thresholds (0.25 sd = 0.036)
+  TEST_FAILURE(".*ERROR: Fix eq/meso grid: spacing 0.1 is too coarse for threshold uniform 0.75 "
+               "1.25.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso dir: unknown value 'w'; allowed: x, y, z.*",
+               fix(std::string("100 1.0 ") + T + " dir w"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso: dir z is not allowed in a 2d simulation; allowed: x, y.*",
+               fix(std::string("100 1.0 ") + T + " dir z"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso crossing: unknown value 'late'; allowed: exact, step.*",
+               fix(std::string("100 1.0 ") + T + " crossing late"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso start: unknown value 'now'; allowed: relaxed, reform.*",
+               fix(std::string("100 1.0 ") + T + " start now"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso drive: K must be > 0 \\(got 0\\).*",
+               fix(std::string("100 1.0 ") + T + " drive 0 1e-3"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso: stage needs the drive keyword.*",
+               fix(std::string("100 1.0 ") + T + " stage 1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso screen: kappa must be >= 0 \\(got -0.1\\).*",
+               fix(std::string("100 1.0 ") + T + " screen -0.1 1.0 1.5"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso screen: lambda_c must be > 0 \\(got 0\\).*",
+               fix(std::string("100 1.0 ") + T + " screen 0.1 0 1.5"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso screen rcut: expected a finite number, got '1e400'.*",
+               fix(std::string("100 1.0 ") + T + " screen 0.1 1.0 1e400"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso screen rcut: expected a number, got 'far'.*",
+               fix(std::string("100 1.0 ") + T + " screen 0.1 1.0 far"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso window: w must be > 0 \\(got 0\\).*",
+               fix(std::string("100 1.0 ") + T + " window 0"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso check: steps must be an integer >= 0 \\(0: never; got -3\\).*",
+               fix(std::string("100 1.0 ") + T + " check -3"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso start: 'reform' needs a reform distribution.*",
+               fix(std::string("100 1.0 ") + T + " reform none start reform"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso: group nobody has no atoms.*",
+               command(std::string("fix m nobody eq/meso 100 1.0 ") + T););
+}
+
+// screening whose block-block coupling sums to Pi0 >= 1 has no screened
+// solution: refused at the first neighbor list build, naming the keyword
+TEST_F(EQMesoErrors, ScreeningWithoutSolution)
+{
+  HIDE_OUTPUT([&] { fix(std::string("100 1.0 ") + T + " screen 0.003 1.0 1.01"); });
+  TEST_FAILURE(".*ERROR: Fix eq/meso screen: Pi0 = sum_m Pi_mn = 1.2 >= 1 at block [0-9]+: no "
+               "screened solution \\(eps0 = Pi0/\\(1 - Pi0\\) diverges\\); lower kappa \\(0.003\\) or "
+               "rcut \\(1.01\\).*",
+               command("run 0 post no"););
+}
+
+// partners beyond the ghost cutoff would be missed (LAMMPS from 2022 on
+// refuses the neighbor list itself; 29 Sep 2021 does not: the fix does)
+TEST_F(EQMesoErrors, GhostCutoff)
+{
+  HIDE_OUTPUT([&] {
+    command("comm_modify cutoff 1.0");
+    fix(std::string("100 1.0 ") + T + " screen 0.001 1.0 1.5");
+  });
+  TEST_FAILURE(".*ERROR: (Fix eq/meso screen: rcut 1.5 \\+ neighbor skin .* exceeds the ghost "
+               "atom cutoff .*; partners would be missed: set comm_modify cutoff .* or more|Custom "
+               "neighbor list cutoff .* is too large for communication cutoff 1).*",
+               command("run 0 post no"););
+}
+
+// the per-block state of a restart file belongs to one grid and one set
+// of distributions: another width is refused
+TEST_F(EQMesoErrors, RestartOfAnotherGrid)
+{
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " grid 0.02");
+    command("run 0 post no");
+    command("write_restart eq_meso_grid.restart");
+    command("clear");
+    command("read_restart eq_meso_grid.restart");
+  });
+  TEST_FAILURE(".*ERROR: Fix eq/meso: the restart file's blocks were written by a fix eq/meso with "
+               "other thresholds, reform, grid, crossing or start: re-specify it as in the run "
+               "that wrote them.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.01"););
+  std::remove("eq_meso_grid.restart");
+}
+
+// the same width, other thresholds: refused by the signature of the
+// blocks' settings in the restart file
+TEST_F(EQMesoErrors, RestartOfOtherThresholds)
+{
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " grid 0.02");
+    command("run 0 post no");
+    command("write_restart eq_meso_thr.restart");
+    command("clear");
+    command("read_restart eq_meso_thr.restart");
+  });
+  TEST_FAILURE(".*ERROR: Fix eq/meso: the restart file's blocks were written by a fix eq/meso with "
+               "other thresholds, reform, grid, crossing or start: re-specify it as in the run "
+               "that wrote them.*",
+               fix("100 1.0 threshold uniform 0.7 1.25 grid 0.02"););
+  std::remove("eq_meso_thr.restart");
+}
+
+TEST_F(EQMesoErrors, FixModify)
+{
+  HIDE_OUTPUT([&] { fix(std::string("100 1.0 ") + T); });
+  TEST_FAILURE(".*ERROR: Fix_modify m velocity: fix m has no stage \\(add the drive keyword\\).*",
+               command("fix_modify m velocity 1e-3"););
+  TEST_FAILURE(".*ERROR: Fix_modify m: unknown keyword 'kc'; allowed: velocity \\(and LAMMPS' "
+               "energy, virial, respa\\).*",
+               command("fix_modify m kc all 0.5"););
+}
+
+int main(int argc, char **argv)
+{
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleMock(&argc, argv);
+  if (argc > 1 && std::string(argv[1]) == "-v") verbose = true;
+  const int rv = RUN_ALL_TESTS();
+  MPI_Finalize();
+  return rv;
+}
