@@ -17,9 +17,11 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "force.h"
 #include "group.h"
 #include "neigh_list.h"
 #include "neighbor.h"
+#include "pair.h"
 #include "respa.h"
 #include "update.h"
 #include "utils.h"
@@ -234,6 +236,18 @@ int FixEQMeso::setmask()
 void FixEQMeso::init()
 {
   init_blocks();
+  if (screen_flag && comm->mode == 0) {
+    // before LAMMPS' neighbor init, whose message about the too large list
+    // cutoff names neither this fix nor its keyword; partners() checks the
+    // ghost cutoff LAMMPS settles on
+    const double need = rcut + neighbor->skin;
+    double have = comm->cutghostuser;
+    if (force->pair) have = std::max(have, force->pair->cutforce + neighbor->skin);
+    if (have < need)
+      error->all(FLERR, "Fix eq/meso screen: rcut {} + neighbor skin {} exceeds the ghost atom "
+                        "cutoff {}; partners would be missed: set comm_modify cutoff {} or more",
+                 rcut, neighbor->skin, have, need);
+  }
   if (screen_flag) EQCompat::request_fix_full_list(neighbor, this, instance_me, rcut);
   list_stamp = -1;
 }

@@ -780,6 +780,85 @@ def gen_substrate(b):
     b.add("substrate.control-np2", "control", fill(BASE_SUBSTRATE, **base), Expect("ok"), np=2)
 
 
+BASE_MESO = LAT2D.replace("0 10 0 10", "0 6 0 4") + """neighbor        0.5 bin
+comm_modify     cutoff 2.0
+{meso}
+velocity        all set 0.01 0.0 0.0 units box
+fix             mv all nve/noforce
+timestep        1.0
+thermo_style    custom step f_m f_m[1] f_m[2] f_m[3] f_m[4]
+thermo_modify   norm no
+thermo          5
+run             30
+"""
+
+
+def gen_meso(b):
+    """fix eq/meso: every value of every keyword (4 configurations of the
+    distributions, as fix eq/contacts), the screening and its Pi0 >= 1."""
+    done = set()
+    big = (("1e300", "robust"), ("1e-300", "robust"))
+    extras0 = [("grid", [P("du", "0.01", extreme=big)]),
+               ("dir", [style_word("dir", "x", ("x", "y", "z"))]),
+               ("crossing", [style_word("crossing", "exact", ("exact", "step"))]),
+               ("start", [style_word("start", "relaxed", ("relaxed", "reform"))]),
+               ("drive", [P("K", "0.5", extreme=big), P("v", "0.01", valid=ANY, extreme=big)]),
+               ("stage", [P("X0", "0.5", valid=ANY, extreme=big)]),
+               ("screen", [P("kappa", "0.001", valid=("zero",), extreme=big), P("lambda_c", "1.0", extreme=big),
+                           P("rcut", "1.5", extreme=big)]),
+               ("window", [P("w", "0.02", extreme=big)]),
+               ("check", [P("N", "10", "int", valid=("zero",))])]
+    extras1 = [("dir", ["y"]), ("crossing", ["step"]), ("start", ["reform"])]
+    for k, (thr, ref, _stf) in enumerate(dist_groups()):
+        thr = (thr[0], [style_word("style", thr[1][0], ("uniform", "gaussian", "realistic", "table"))]
+               + thr[1][1:]) if k == 0 else thr
+        ref = (ref[0], [style_word("style", ref[1][0], ("delta", "uniform", "gaussian", "none"))]
+               + ref[1][1:]) if k == 0 else ref
+        extra = extras0 if k == 0 else (extras1 if k == 1 else [])
+        pos = [P("Nlambda", "100"), P("kc", "1.0")]
+        cmd = Cmd("meso", r"eq/meso", ["fix", "m", "all", "eq/meso"], pos, [thr, ref] + extra)
+        b.add(f"meso.control{k}", "control", fill(BASE_MESO, meso=cmd.line()), Expect("ok"), GOOD_FILES)
+        for suffix, cls, line, kw, p, val in mutate_cmd(cmd, done):
+            ocls, exp = mutation_expect(cmd, cls, kw, p, val)
+            sub = thr[1][0] if suffix.startswith("threshold") else (
+                ref[1][0] if suffix.startswith("reform.") else "")
+            if isinstance(sub, P):
+                sub = sub.value
+            cid = f"meso.{suffix}" if not sub else f"meso.{suffix.split('.')[0]}-{sub}.{'.'.join(suffix.split('.')[1:])}"
+            b.add(cid, ocls, fill(BASE_MESO, meso=line), exp, GOOD_FILES)
+        done |= {("", "Nlambda"), ("", "kc")}
+        done |= {(g, "style") for g in ("threshold", "reform")}
+        done |= {(g, it.name) for g, its in extras0 for it in its if isinstance(it, P)}
+    good = "fix m all eq/meso 100 1.0 threshold uniform 0.75 1.25"
+    for bad in ("thresholds", "grids", "screening", "windows", "checks", "drives", "avalanches",
+                "stiffness"):
+        b.add(f"meso.unknown.{bad}", "unknown-keyword", fill(BASE_MESO, meso=f"{good} {bad} 1"),
+              Expect("error", "eq/meso", rf"\b{re.escape(bad)}\b"))
+    for cid, line, kw, cls in [
+        ("threshold.absent", "fix m all eq/meso 100 1.0 reform delta 0.0", r"\bthreshold\b", "missing"),
+        ("args.none", "fix m all eq/meso", r"Nlambda", "missing"),
+        ("args.nlambda-only", "fix m all eq/meso 100", r"\bkc\b|Nlambda", "missing"),
+        ("stage.no-drive", f"{good} stage 1.0", r"\bstage\b|\bdrive\b", "conflict"),
+        ("dir.z-2d", f"{good} dir z", r"\bdir\b", "dimension"),
+        ("grid.coarse", f"{good} grid 0.3", r"\bgrid\b", "out-of-range"),
+        ("screen.pi0-above-one", f"{good} screen 0.5 1.0 1.5", r"\bscreen\b|Pi0", "out-of-range"),
+        ("screen.rcut-beyond-ghosts", f"{good} screen 0.001 1.0 5.0", r"\bscreen\b|rcut", "out-of-range"),
+        ("reform-delta-at-threshold", f"{good} reform delta 1.25", r"\breform\b", "out-of-range"),
+        ("threshold-uniform-equal", "fix m all eq/meso 100 1.0 threshold uniform 1.0 1.0",
+         r"\bthreshold\b", "out-of-range"),
+        ("check.float", f"{good} check 2.5", r"\bcheck\b", "wrong-type"),
+    ]:
+        b.add(f"meso.{cid}", cls, fill(BASE_MESO, meso=line), Expect("error", "eq/meso", kw), GOOD_FILES)
+    b.add("meso.group-empty", "wrong-group",
+          fill(BASE_MESO, meso=f"group nobody empty\nfix m nobody eq/meso 100 1.0 threshold uniform 0.75 1.25"),
+          Expect("error", "eq/meso", r"\bgroup\b|no atoms"))
+    b.add("meso.fix_modify.unknown", "unknown-keyword",
+          fill(BASE_MESO, meso=f"{good}\nfix_modify m speed 1.0"),
+          Expect("error", r"fix_modify|eq/meso", r"\bspeed\b"))
+    b.add("meso.control-np2", "control", fill(BASE_MESO, meso=f"{good} screen 0.001 1.0 1.5"),
+          Expect("ok"), np=2)
+
+
 # ----------------------------------------------------------------------------
 # table files: missing, empty, garbled, non-monotonic, NaN, out of range
 
@@ -1154,6 +1233,7 @@ def generate(mpi=True):
     gen_eqme(b)
     gen_interact(b)
     gen_substrate(b)
+    gen_meso(b)
     gen_tables(b)
     gen_misc(b)
     cases = b.cases if mpi else [c for c in b.cases if c.np == 1]

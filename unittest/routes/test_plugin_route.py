@@ -84,13 +84,17 @@ def eq_styles(help_text):
     return sorted(set(re.findall(r"\beq/[a-z/]+", help_text)))
 
 
+# every style of the package (sorted), compiled in and in the plugin
+STYLES = ["eq/contacts", "eq/elastic", "eq/me", "eq/meso", "eq/quasistatic", "eq/substrate"]
+
+
 def test_host_is_lammps_without_the_package(tmp_path):
     host_help = subprocess.run([HOST, "-h"], stdout=subprocess.PIPE, text=True).stdout
     assert eq_styles(host_help) == []
     assert "PLUGIN" in host_help
     lmp_help = subprocess.run([LMP, "-h"], stdout=subprocess.PIPE, text=True).stdout
     compiled_in = eq_styles(lmp_help)
-    assert compiled_in == ["eq/contacts", "eq/elastic", "eq/me", "eq/quasistatic", "eq/substrate"]
+    assert compiled_in == STYLES
     out = run(HOST, "plugin list\n", tmp_path, plugin=True)
     assert eq_styles(out) == compiled_in
     # the plugin was built for this LAMMPS: no version warning
@@ -104,8 +108,7 @@ def test_plugin_path_loads_without_a_command(tmp_path):
     text = "plugin list\n"
     if VERSION >= 20220217:
         out = run(HOST, text, tmp_path, plugin=False, env_extra=env)
-        assert eq_styles(out) == ["eq/contacts", "eq/elastic", "eq/me", "eq/quasistatic",
-                                  "eq/substrate"]
+        assert eq_styles(out) == STYLES
     else:
         out = run(HOST, text, tmp_path, plugin=False, env_extra=env)
         assert eq_styles(out) == []
