@@ -107,6 +107,7 @@ void FixEQBlocks::push_field()
   if ((int) qbuf.size() < atom->nmax) qbuf.resize(atom->nmax);
   displacements(qbuf.data());
   field->field_update(qbuf.data(), false);
+  qfresh = true;
 }
 
 void FixEQBlocks::setup_pre_force(int /*vflag*/)

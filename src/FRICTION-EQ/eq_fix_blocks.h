@@ -61,6 +61,7 @@ class FixEQBlocks : public FixEQPerAtom, public EQCoordinateSource {
   // nullptr; the coordinates handed to it
   EQElasticField *field;
   std::vector<double> qbuf;
+  bool qfresh = false;    // qbuf pushed since the last take_displacements()
 
   // a block first seen in the group (its site is where it is now)
   virtual void init_block(int i) = 0;
@@ -74,6 +75,15 @@ class FixEQBlocks : public FixEQPerAtom, public EQCoordinateSource {
   int modify_velocity(int narg, char **arg);
   // displacement u = x - site of every local block (NaN: not a block)
   void displacements(double *u);
+  // the displacements handed to the field in this force evaluation (the
+  // positions have not changed since: Verlet and minimizers, not r-RESPA),
+  // or nullptr; valid until the next call of take_displacements()
+  const double *take_displacements()
+  {
+    const bool ok = qfresh && level_field < 0;
+    qfresh = false;
+    return ok ? qbuf.data() : nullptr;
+  }
 
  private:
   void push_field();

@@ -344,12 +344,15 @@ void FixEQSubstrate::apply()
   // the run continues as if it had not been split
   const bool keep = exact && fsub_valid && update->whichflag == 1 && update->setupflag;
   const double half = 0.5 * uc;
+  // the displacements pushed to the field in this force evaluation: the
+  // same numbers, not computed twice
+  const double *const upushed = take_displacements();
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     double *const st = state[i];
     if (st[DISORDER] == 0.0) init_block(i);
-    const double u = unwrap.fix(unwrap(i) - st[SITE]);
+    const double u = upushed ? upushed[i] : unwrap.fix(unwrap(i) - st[SITE]);
     if (!std::isfinite(u))
       error->one(FLERR,
                  "Fix eq/substrate: displacement of block {} is {} (numerical instability: "
