@@ -372,9 +372,13 @@ void FixEQSubstrate::apply()
     if (keep && u == u_old) {
       fs = st[FSUB];
     } else if (!rev_break) {
-      double n, r;
-      shape.reduce(u, n, r);
-      st[ANCHOR] = n * uc;
+      // most steps stay in the well of the last evaluation: no division
+      double r = u - a_old;
+      if (!(r >= 0.0 && r < uc)) {
+        double n;
+        shape.reduce(u, n, r);
+        st[ANCHOR] = n * uc;
+      }
       fs = -kd * shape.phi_in(r);
     } else {
       double a = a_old;
