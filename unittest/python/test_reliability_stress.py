@@ -238,10 +238,12 @@ def test_more_than_1000_breaks_in_a_step_is_an_error(tmp_path):
           n=4, threshold="uniform 0.0 1e-6", steps=3)
 
 
-@pytest.mark.xfail(strict=True, reason="package bug (silent wrong result): a slider step of more "
-                   "than half the box (fix move 3.3 per step, box 4) is folded to the nearest "
-                   "periodic image (-0.7): the contacts are loaded backwards (mean stretch -0.6 "
-                   "while the slider moves +x); the documented restriction is not checked")
+@pytest.mark.xfail(strict=True, reason="silent wrong result, not caught: a slider step of more "
+                   "than half the box (fix move 3.3 per step, box 4) is folded by LAMMPS' fix "
+                   "move (Domain::remap_near) to the nearest periodic image (-0.7) before any "
+                   "fix sees it: the contacts are loaded backwards (mean stretch -0.6 while the "
+                   "slider moves +x); the package could compare v dt with half the box every "
+                   "step, which it does not (documented restriction, not checked)")
 def test_slider_step_beyond_half_the_box_is_reported(tmp_path):
     """The documented restriction (do not move an atom more than half a
     box length in one step) must be enforced: an error naming the step,
