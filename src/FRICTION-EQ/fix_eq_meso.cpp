@@ -240,13 +240,9 @@ void FixEQMeso::init()
     // before LAMMPS' neighbor init, whose message about the too large list
     // cutoff names neither this fix nor its keyword; partners() checks the
     // ghost cutoff LAMMPS settles on
-    const double need = rcut + neighbor->skin;
     double have = comm->cutghostuser;
     if (force->pair) have = std::max(have, force->pair->cutforce + neighbor->skin);
-    if (have < need)
-      error->all(FLERR, "Fix eq/meso screen: rcut {} + neighbor skin {} exceeds the ghost atom "
-                        "cutoff {}; partners would be missed: set comm_modify cutoff {} or more",
-                 rcut, neighbor->skin, have, need);
+    check_ghost_cutoff(have);
   }
   if (screen_flag) EQCompat::request_fix_full_list(neighbor, this, instance_me, rcut);
   list_stamp = -1;
@@ -380,13 +376,18 @@ void FixEQMeso::apply(bool advance)
    same order on any number of ranks and whatever the list's schedule
 ------------------------------------------------------------------------- */
 
-void FixEQMeso::partners()
+void FixEQMeso::check_ghost_cutoff(double have)
 {
   const double need = rcut + neighbor->skin;
-  if (comm->get_comm_cutoff() < need)
+  if (have < need)
     error->all(FLERR, "Fix eq/meso screen: rcut {} + neighbor skin {} exceeds the ghost atom "
                       "cutoff {}; partners would be missed: set comm_modify cutoff {} or more",
-               rcut, neighbor->skin, comm->get_comm_cutoff(), need);
+               rcut, neighbor->skin, have, need);
+}
+
+void FixEQMeso::partners()
+{
+  check_ghost_cutoff(comm->get_comm_cutoff());
   double **x = atom->x;
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;

@@ -94,6 +94,8 @@ class FixEQMeso : public FixEQBlocks {
   void init_block(int i) override;
   void apply(bool advance);
   void partners();
+  // the ghost atom cutoff must hold rcut + skin (error naming screen)
+  void check_ghost_cutoff(double have);
   void screening();
   void check_normalization();
   void reduce();
