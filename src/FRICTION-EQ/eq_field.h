@@ -19,7 +19,9 @@
    Control flows one way: the source drives every force evaluation.  Before
    the pair style computes (setup_pre_force, pre_force, min_pre_force, or
    pre_force_respa at the pair's level) it hands the field the coordinates
-   of its local atoms at the current positions (field_update); after
+   of its local atoms at the current positions (field_update), or, for
+   sources whose coordinates move with their atoms (blocks), lets the field
+   follow the positions (field_advance); after
    breaks at fixed positions it hands it the changes (field_change).  The
    pair style's compute() only reads what the field holds: it never calls
    the source.
@@ -57,11 +59,19 @@ class EQElasticField {
   // coupled); h and K follow.  full: recompute everything (the set of
   // coupled atoms changed)
   virtual void field_update(const double *q, bool full = false) = 0;
+  // the coordinates changed only through the motion of the atoms since the
+  // last field_update (x - q along dir fixed for every atom: blocks between
+  // two list builds): the field follows the positions itself, without an
+  // array.  false: it needs field_update now (a list build, a new run, a
+  // drift check); all ranks answer alike
+  virtual bool field_advance() = 0;
   // atoms list[0..n) changed their coordinate by dq[list[m]] at fixed
   // positions (breaks): h and K of every partner follow
   virtual void field_change(const int *list, int n, const double *dq) = 0;
-  // h_i and K_i of local atoms (valid after field_update)
-  virtual const double *field_h() const = 0;
+  // h_i and K_i of local atoms (valid after field_update or field_advance;
+  // after field_advance the field may compute h only when it is asked for
+  // or when the pair style computes its forces)
+  virtual const double *field_h() = 0;
   virtual const double *field_k() const = 0;
   // end of a run: report what the incremental updates cost and their drift
   virtual void field_report() = 0;

@@ -104,6 +104,12 @@ void FixEQBlocks::displacements(double *u)
 
 void FixEQBlocks::push_field()
 {
+  // between list builds the field follows the blocks' positions (their
+  // sites do not move): no displacements to hand over
+  if (field->field_advance()) {
+    qfresh = false;
+    return;
+  }
   if ((int) qbuf.size() < atom->nmax) qbuf.resize(atom->nmax);
   displacements(qbuf.data());
   field->field_update(qbuf.data(), false);

@@ -7,7 +7,9 @@
    along dir where its displacement u is 0, set when the block is first
    seen).  The displacements are the coordinates of an elastic field
    (pair eq/elastic couples the blocks at the distance of their sites):
-   they are handed to it before every force evaluation.  Optional driving
+   they are handed to it before a force evaluation whenever it asks for
+   them (list builds; in between it follows the positions, the sites being
+   fixed: field_advance).  Optional driving
    springs K tie every block to a stage at X_s that moves with velocity v:
    keywords drive K v and stage X0, fix_modify ID velocity v, restart of
    the stage.

@@ -20,7 +20,12 @@
      reverse communication per avalanche round;
    - otherwise (blocks moving one by one, a deforming slider) h is
      recomputed over the pairs of the list, cached with their k_ij at the
-     list build (blocks: the distance of their sites is fixed).
+     list build (blocks: the distance of their sites is fixed);
+   - blocks (sites fixed) need no array at all: q = x - w along dir, and
+     h and the forces are computed in one pass in compute()
+     (field_advance).
+   Only the coupled ghosts of the lists (glist) are followed; a change of
+   the box (the ghosts' periodic shifts) recomputes everything.
    After every list build, and every `check` updates as a drift check
    whose result is reported at the end of each run, h is recomputed from
    scratch.  A full neighbor list gives every atom all its partners, so
@@ -32,6 +37,7 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "fix.h"
 #include "force.h"
@@ -72,7 +78,7 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
     Pair(lmp), check_every(CHECK_DEFAULT), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr),
     lambda(nullptr), kidx(nullptr), mixed(nullptr), anisotropic(0), source(nullptr), idir(0),
     sgroupbit(0), site_distance(false), nmax(0), q(nullptr), xq(nullptr), w(nullptr),
-    h(nullptr), ksum(nullptr), dh(nullptr), mom(nullptr), valid(0), ghosts_current(0), ready(0),
+    h(nullptr), ksum(nullptr), dh(nullptr), mom(nullptr), valid(0), ghosts_current(0), ready(0), pending(0),
     vir_valid(0), comm_mode(0)
 {
   single_enable = 1;
@@ -88,7 +94,8 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
   comm_reverse = 1;
   cut_global = 0.0;
   wvir[0] = wvir[1] = wvir[2] = 0.0;
-  n_update = n_uniform = n_rebuild = n_nonuniform = n_change = n_check = 0;
+  for (double &b : wbox) b = 0.0;
+  n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = 0;
   drift_max = hscale_max = 0.0;
 }
 
@@ -400,6 +407,21 @@ void PairEQElastic::sync_ghosts()
   const int nall = atom->nlocal + atom->nghost;
   for (int i = 0; i < nall; i++) w[i] = x[i][idir] - q[i];
   ghosts_current = 1;
+  const double box[6] = {domain->xprd, domain->yprd, domain->zprd,
+                         domain->xy,   domain->xz,   domain->yz};
+  for (int k = 0; k < 6; k++) wbox[k] = box[k];
+}
+
+// q = x - w holds only while the periodic shifts of the ghosts (and the
+// images of the local atoms) are those of the box w was set in (fix
+// deform, change_box between runs with run pre no)
+bool PairEQElastic::box_changed() const
+{
+  const double box[6] = {domain->xprd, domain->yprd, domain->zprd,
+                         domain->xy,   domain->xz,   domain->yz};
+  for (int k = 0; k < 6; k++)
+    if (box[k] != wbox[k]) return true;
+  return false;
 }
 
 /* ----------------------------------------------------------------------
@@ -418,10 +440,18 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const int d = idir;
-  if (fresh_ghosts) sync_ghosts();
-  else
-    for (int i = nlocal; i < nall; i++) q[i] = x[i][d] - w[i];
-  for (int i = 0; i < nall; i++) xq[i] = x[i][d];
+  // the coupled ghosts of the lists: from the owners at a list build (and
+  // after breaks), else from x - w (glist is that of the same list)
+  if (fresh_ghosts) {
+    sync_ghosts();
+    for (int i = 0; i < nall; i++) xq[i] = x[i][d];
+  } else {
+    for (int i = 0; i < nlocal; i++) xq[i] = x[i][d];
+    for (const int i : glist) {
+      q[i] = x[i][d] - w[i];
+      xq[i] = x[i][d];
+    }
+  }
 
   const int inum = list->inum;
   const int *ilist = list->ilist;
@@ -430,6 +460,10 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
   first.assign(2 * (size_t) nlocal, 0);
   pj.clear();
   pk.clear();
+  if (fresh_ghosts) {
+    glist.clear();
+    gmark.assign(nall - nlocal, 0);
+  }
   for (int i = 0; i < nlocal; i++) {
     h[i] = ksum[i] = 0.0;
     mom[i][0] = mom[i][1] = mom[i][2] = 0.0;
@@ -455,6 +489,10 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
       j &= NEIGHMASK;
       const double qj = q[j];
       if (std::isnan(qj)) continue;
+      if (fresh_ghosts && j >= nlocal && !gmark[j - nlocal]) {
+        gmark[j - nlocal] = 1;
+        glist.push_back(j);
+      }
       // a periodic image of the atom itself is the same contact or block:
       // no interaction (it would only enter K_i and the re-forming of a
       // broken contact, as if its own stretch stayed behind)
@@ -519,7 +557,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
    with a margin of a factor 2 for the motion until the next list build.
 ------------------------------------------------------------------------- */
 
-void PairEQElastic::pair_field(bool /*want_virial*/)
+void PairEQElastic::pair_field()
 {
   const int nlocal = atom->nlocal;
   const int *fr = first.data();
@@ -569,12 +607,12 @@ void PairEQElastic::field_update(const double *qin, bool full)
   grow();
   ++n_update;
   ready = 1;
+  pending = 0;
   double **x = atom->x;
   const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
   const int d = idir;
 
-  if (full || !valid || neighbor->ago == 0) {
+  if (full || !valid || neighbor->ago == 0 || box_changed()) {
     memcpy(q, qin, nlocal * sizeof(double));
     rebuild(true);
     ++n_rebuild;
@@ -611,8 +649,10 @@ void PairEQElastic::field_update(const double *qin, bool full)
                       "without notice (internal error)", atom->tag[changed], source->source_name(),
                std::isnan(qin[changed]) ? "uncoupled" : "coupled");
   if (!ghosts_current) sync_ghosts();    // after breaks: the owners' new coordinates
-  for (int i = nlocal; i < nall; i++) {
-    if (std::isnan(q[i])) continue;
+  // only the coupled ghosts of the lists enter h (and can become partners
+  // before the next list build): a box with many ghosts beyond the cutoff
+  // (periodic images in a thin dimension) costs nothing per update
+  for (const int i : glist) {
     const double xi = x[i][d];
     const double del = xi - xq[i];
     dmin = del < dmin ? del : dmin;
@@ -629,10 +669,69 @@ void PairEQElastic::field_update(const double *qin, bool full)
     ++n_uniform;    // a rigid translation: h, K and the virial hold
   } else {
     ++n_nonuniform;
-    if (site_distance) pair_field(false);
+    if (site_distance) pair_field();
     else rebuild(false);    // k_ij at the atoms' new distances
   }
   if (check_every > 0 && n_update % check_every == 0) drift_check();
+}
+
+/* ----------------------------------------------------------------------
+   blocks between two list builds: their sites do not move, so every
+   coordinate is q = x - w along dir (w set at the last update with an
+   array); h over the cached pairs in one pass over the positions.  The
+   same decisions as field_update() (list build, drift check), so that
+   every rank takes the same path.
+------------------------------------------------------------------------- */
+
+bool PairEQElastic::field_advance()
+{
+  if (!site_distance || !valid || !ghosts_current || neighbor->ago == 0 || atom->nmax > nmax ||
+      box_changed())
+    return false;
+  if (check_every > 0 && (n_update + 1) % check_every == 0) return false;
+  ++n_update;
+  ++n_advance;
+  ready = 1;
+  pending = 1;
+  vir_valid = 0;
+  return true;
+}
+
+// h_i = sum_j k_ij (q_i - q_j) with q = x - w, and the skin check of
+// pair_field(); q of local atoms and of the ghosts of the lists follow.
+// f: the forces -h_i are added in the same pass (from compute())
+void PairEQElastic::site_field(double **f)
+{
+  pending = 0;
+  const double *const *const x = atom->x;
+  const int nlocal = atom->nlocal;
+  const int d = idir;
+  const int *fr = first.data();
+  const int *jv = pj.data();
+  const double *kv = pk.data();
+  for (const int i : glist) q[i] = x[i][d] - w[i];
+  const double dumax = 0.5 * neighbor->skin;
+  double dubig = 0.0;
+  int ibig = -1, jbig = -1;
+  for (int i = 0; i < nlocal; i++) {
+    const double qi = x[i][d] - w[i];    // NaN: not coupled (w = x - NaN)
+    q[i] = qi;
+    if (std::isnan(qi)) continue;
+    double hi = 0.0;
+    for (int m = fr[2 * i]; m < fr[2 * i + 1]; m++) {
+      const int j = jv[m];
+      const double dq = qi - (x[j][d] - w[j]);
+      hi += kv[m] * dq;
+      if (kv[m] != 0.0 && std::fabs(dq) > dubig) {
+        dubig = std::fabs(dq);
+        ibig = i;
+        jbig = j;
+      }
+    }
+    h[i] = hi;
+    if (f) f[i][d] -= hi;
+  }
+  if (dubig > dumax) skin_error(ibig, jbig, dubig);
 }
 
 /* ----------------------------------------------------------------------
@@ -702,15 +801,15 @@ void PairEQElastic::field_report()
         : (check_every > 0 ? fmt::format("no drift check (one every {} updates)", check_every)
                            : std::string("no drift check (check 0)"));
     utils::logmesg(lmp, "pair eq/elastic: {} field updates on rank 0: {} rigid translations (no "
-                        "pair work), {} recomputed after list builds, {} non-uniform; {} coordinate "
-                        "changes scattered on all ranks; {}\n",
-                   n_update, n_uniform, n_rebuild, n_nonuniform, sums[0], drift);
+                        "pair work), {} recomputed after list builds, {} non-uniform, {} followed the "
+                        "blocks' positions; {} coordinate changes scattered on all ranks; {}\n",
+                   n_update, n_uniform, n_rebuild, n_nonuniform, n_advance, sums[0], drift);
     if (n_check > 0 && all[0] > 1e-9 * all[1])
       error->warning(FLERR, "Pair eq/elastic: the incremental field drifted by {:.3g} from the "
                             "recomputed one (scale of h {:.3g}); lower the check interval "
                             "(pair_style eq/elastic rcut check N)", all[0], all[1]);
   }
-  n_update = n_uniform = n_rebuild = n_nonuniform = n_change = n_check = 0;
+  n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = 0;
   drift_max = hscale_max = 0.0;
 }
 
@@ -733,8 +832,10 @@ void PairEQElastic::compute(int eflag, int vflag)
   double **f = atom->f;
   const int nlocal = atom->nlocal;
   const int d = idir;
-  for (int i = 0; i < nlocal; i++)
-    if (!std::isnan(q[i])) f[i][d] -= h[i];
+  if (pending) site_field(f);    // blocks between list builds: h and forces in one pass
+  else
+    for (int i = 0; i < nlocal; i++)
+      if (!std::isnan(q[i])) f[i][d] -= h[i];
   if (!evflag) return;
 
   double **x = atom->x;
@@ -809,15 +910,20 @@ double PairEQElastic::single(int i, int j, int itype, int jtype, double rsq,
   fforce = 0.0;
   svector[0] = svector[1] = 0.0;
   if (!source || !q || i >= nmax || j >= nmax) return 0.0;
-  if (std::isnan(q[i]) || std::isnan(q[j])) return 0.0;
-  if (rsq > cutsq_in[itype][jtype]) return 0.0;
+  // ghosts: q = x - w (current for all ghosts after compute(); the field
+  // keeps q itself current only for the ghosts of its lists)
   double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  const double qi = i < nlocal ? q[i] : x[i][idir] - w[i];
+  const double qj = j < nlocal ? q[j] : x[j][idir] - w[j];
+  if (std::isnan(qi) || std::isnan(qj)) return 0.0;
+  if (rsq > cutsq_in[itype][jtype]) return 0.0;
   double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-  if (site_distance) del[idir] -= q[i] - q[j];
+  if (site_distance) del[idir] -= qi - qj;
   rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
   if (rsq > cutsq_in[itype][jtype]) return 0.0;
   const double k = factor_lj * kval(itype, jtype, rsq, del);
-  const double dq = q[i] - q[j];
+  const double dq = qi - qj;
   svector[0] = k;
   svector[1] = -k * dq;
   return 0.5 * k * dq * dq;

@@ -54,8 +54,13 @@ class PairEQElastic : public Pair, public EQElasticField {
   // EQElasticField
   const EQCoordinateSource *field_source() const override { return source; }
   void field_update(const double *q, bool full) override;
+  bool field_advance() override;
   void field_change(const int *list, int n, const double *dq) override;
-  const double *field_h() const override { return h; }
+  const double *field_h() override
+  {
+    if (pending) site_field(nullptr);
+    return h;
+  }
   const double *field_k() const override { return ksum; }
   void field_report() override;
 
@@ -87,23 +92,31 @@ class PairEQElastic : public Pair, public EQElasticField {
   // pj[first[i] .. first[i+1]) with k_ij pk (special factor included)
   std::vector<int> first, pj;
   std::vector<double> pk;
+  // the coupled ghosts in the lists of local coupled atoms (the only ghosts
+  // whose q is kept current between list builds; the others: x - w)
+  std::vector<int> glist;
+  std::vector<char> gmark;
 
   int valid;             // arrays and pairs match the current list and atoms
   int ghosts_current;    // ghost q equal their owners' q
   int ready;             // field_update since the last compute()
+  int pending;           // field_advance: h to be computed (with the forces)
+  double wbox[6];        // box (prd, tilts) when w was set: the ghosts' shifts
   int vir_valid;         // wvir holds this rank's share of the virial
   double wvir[3];        // sum over local i of (1/2) sum_j del_ij,a f_ij (f along dir)
   int comm_mode;
 
   // what the updates cost and how far the incremental field drifted
-  bigint n_update, n_uniform, n_rebuild, n_nonuniform, n_change, n_check;
+  bigint n_update, n_uniform, n_rebuild, n_nonuniform, n_advance, n_change, n_check;
   double drift_max, hscale_max;
 
   void allocate();
   void grow();
   void sync_ghosts();
+  bool box_changed() const;
   void rebuild(bool fresh_ghosts);
-  void pair_field(bool want_virial);
+  void pair_field();
+  void site_field(double **f);
   void drift_check();
   void skin_error(int i, int j, double du);
   double kval(int itype, int jtype, double rsq, const double *del) const;

@@ -583,3 +583,58 @@ def test_time_step_warning_from_any_rank(tmp_path):
     log = tmp_path / "log.slow"
     run_lammps(JUMP, {"n": n, "steps": steps, "vel": 4.0}, nprocs=2, cwd=tmp_path, log=log.name)
     assert "WARNING: Fix eq/substrate" not in log.read_text()
+
+
+@pytest.mark.parametrize("deform", [0.0, 0.03])
+def test_pair_forces_follow_the_blocks_at_every_step(tmp_path, deform):
+    """Between two neighbor-list builds pair eq/elastic follows the blocks'
+    positions itself (their sites do not move): x - w instead of the
+    displacements handed over by the fix.  At every dumped step, on 1 and 2
+    ranks (partners across subdomain and periodic boundaries), the force
+    on every block is sum over its 4 lattice neighbours k (u_j - u_i), u
+    the fix's own displacements (f_sub[1]), k = g inside the box and, with
+    the box growing along x (fix deform, no remap), g/r^3 for the pairs
+    across the periodic x boundary, whose sites are r = 1 + (xprd - L)
+    apart (crossover kernel beyond lambda_c = 1).  The ghosts' shifts
+    change with the box: the field must take the fix's displacements
+    again, not extrapolate from its last ones (off by the growth of xprd)."""
+    L, g = 8, 3.0
+    for nprocs in (1, 2):
+        log = run_lammps(INPUTS / "in.substrate-field", {"L": L, "g": g, "deform": deform},
+                         nprocs=nprocs, cwd=tmp_path)
+        # 61 updates: 7 at list builds (steps 0, 10, ..., 60), the others
+        # follow the positions, except where the box changed (fix deform
+        # changes it at the end of every step: from step 2 on)
+        m = re.search(r"(\d+) field updates on rank 0: .* (\d+) recomputed after list builds, "
+                      r"(\d+) non-uniform, (\d+) followed the blocks' positions", log)
+        assert m, log[-2000:]
+        assert int(m.group(1)) == 61
+        assert int(m.group(4)) == (1 if deform > 0.0 else 61 - 7)
+        steps, cols = fkme.read_dump(tmp_path / "field.dump")
+        assert len(steps) == 9
+        worst = 0.0
+        for s in range(len(steps)):
+            # lattice indices from the sites x - u (IDs follow the ranks)
+            ix = np.rint(cols["x"][s] - cols["f_sub[1]"][s]).astype(int) % L
+            iy = np.rint(cols["y"][s]).astype(int) % L
+            assert len(set(zip(ix, iy))) == L * L
+            u = np.zeros((L, L))
+            u[iy, ix] = cols["f_sub[1]"][s]
+            # the dump's box is that after fix deform's end_of_step; the
+            # forces of step n saw the box of step n - 1 (linear growth)
+            box, n = cols["box"][s], steps[s]
+            r = 1.0 + (box[0][1] - box[0][0] - L) * ((n - 1) / n if n else 0.0)
+            kx = g if r <= 1.0 else g / r ** 3
+            # x neighbours: k = kx across the wrap (ix = 0 with ix = L - 1)
+            right, left = np.roll(u, -1, 1) - u, np.roll(u, 1, 1) - u
+            kr = np.full((L, L), g)
+            kr[:, L - 1] = kx
+            kl = np.full((L, L), g)
+            kl[:, 0] = kx
+            ref = (kr * right + kl * left + g * (np.roll(u, 1, 0) + np.roll(u, -1, 0) - 2 * u))
+            err = np.abs(cols["fx"][s] - ref[iy, ix]).max()
+            worst = max(worst, err)
+            if deform > 0.0 and s > 0:
+                assert r > 1.0 + 1e-4    # the box did grow
+        # rounding of u ~ 1e-16 L, forces ~ g: 1e-12 leaves a factor 100
+        assert worst < 1e-12, (nprocs, worst)
