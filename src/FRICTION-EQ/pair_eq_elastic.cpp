@@ -489,10 +489,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
       j &= NEIGHMASK;
       const double qj = q[j];
       if (std::isnan(qj)) continue;
-      if (fresh_ghosts && j >= nlocal && !gmark[j - nlocal]) {
-        gmark[j - nlocal] = 1;
-        glist.push_back(j);
-      }
+      if (fresh_ghosts && j >= nlocal) gmark[j - nlocal] = 1;
       // a periodic image of the atom itself is the same contact or block:
       // no interaction (it would only enter K_i and the re-forming of a
       // broken contact, as if its own stretch stayed behind)
@@ -524,6 +521,11 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
     mom[i][2] = m2;
     first[2 * i + 1] = (int) pj.size();
   }
+  // the coupled ghosts of the lists in the order of their index (a
+  // sequential pass over the ghosts' arrays at every update)
+  if (fresh_ghosts)
+    for (int i = nlocal; i < nall; i++)
+      if (gmark[i - nlocal]) glist.push_back(i);
   // virial (1/2) sum_j del_a f_j along dir, f = -k (q_i - q_j): from the
   // pairs again (the moments alone do not give it)
   for (int i = 0; i < nlocal; i++) {
