@@ -78,7 +78,7 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
     Pair(lmp), check_every(CHECK_DEFAULT), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr),
     lambda(nullptr), kidx(nullptr), mixed(nullptr), anisotropic(0), source(nullptr), idir(0),
     sgroupbit(0), site_distance(false), nmax(0), q(nullptr), xq(nullptr), w(nullptr),
-    h(nullptr), ksum(nullptr), dh(nullptr), mom(nullptr), valid(0), ghosts_current(0), ready(0), pending(0),
+    h(nullptr), ksum(nullptr), dh(nullptr), mom(nullptr), valid(0), ghosts_current(0), ready(0), pending(0), advanced(0),
     vir_valid(0), comm_mode(0)
 {
   single_enable = 1;
@@ -615,6 +615,7 @@ void PairEQElastic::field_update(const double *qin, bool full)
   const int d = idir;
 
   if (full || !valid || neighbor->ago == 0 || box_changed()) {
+    advanced = 0;
     memcpy(q, qin, nlocal * sizeof(double));
     rebuild(true);
     ++n_rebuild;
@@ -667,7 +668,10 @@ void PairEQElastic::field_update(const double *qin, bool full)
 
   const double eps = std::numeric_limits<double>::epsilon();
   const double tol = UNIFORM_ULPS * eps * (xmax + std::fmax(std::fabs(dmin), std::fabs(dmax)));
-  if (!(dmax - dmin > tol)) {
+  // after field_advance the positions xq are older than h: no shortcut
+  const bool after_advance = advanced;
+  advanced = 0;
+  if (!after_advance && !(dmax - dmin > tol)) {
     ++n_uniform;    // a rigid translation: h, K and the virial hold
   } else {
     ++n_nonuniform;
@@ -695,6 +699,7 @@ bool PairEQElastic::field_advance()
   ++n_advance;
   ready = 1;
   pending = 1;
+  advanced = 1;    // xq are not kept (see field_update)
   vir_valid = 0;
   return true;
 }

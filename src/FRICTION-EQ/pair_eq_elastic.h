@@ -101,6 +101,7 @@ class PairEQElastic : public Pair, public EQElasticField {
   int ghosts_current;    // ghost q equal their owners' q
   int ready;             // field_update since the last compute()
   int pending;           // field_advance: h to be computed (with the forces)
+  int advanced;          // field_advance since the last field_update (xq not kept)
   double wbox[6];        // box (prd, tilts) when w was set: the ghosts' shifts
   int vir_valid;         // wvir holds this rank's share of the virial
   double wvir[3];        // sum over local i of (1/2) sum_j del_ij,a f_ij (f along dir)

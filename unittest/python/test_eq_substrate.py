@@ -585,8 +585,9 @@ def test_time_step_warning_from_any_rank(tmp_path):
     assert "WARNING: Fix eq/substrate" not in log.read_text()
 
 
-@pytest.mark.parametrize("deform", [0.0, 0.03])
-def test_pair_forces_follow_the_blocks_at_every_step(tmp_path, deform):
+@pytest.mark.parametrize("deform,check,move", [(0.0, 1000, "nve"), (0.0, 3, "wiggle"),
+                                               (0.03, 1000, "nve")])
+def test_pair_forces_follow_the_blocks_at_every_step(tmp_path, deform, check, move):
     """Between two neighbor-list builds pair eq/elastic follows the blocks'
     positions itself (their sites do not move): x - w instead of the
     displacements handed over by the fix.  At every dumped step, on 1 and 2
@@ -597,19 +598,36 @@ def test_pair_forces_follow_the_blocks_at_every_step(tmp_path, deform):
     across the periodic x boundary, whose sites are r = 1 + (xprd - L)
     apart (crossover kernel beyond lambda_c = 1).  The ghosts' shifts
     change with the box: the field must take the fix's displacements
-    again, not extrapolate from its last ones (off by the growth of xprd)."""
+    again, not extrapolate from its last ones (off by the growth of xprd).
+    With a drift check every 3 updates, the check steps take the fix's
+    displacements between steps that follow the positions.  The blocks
+    then oscillate (fix move wiggle, two amplitudes, a period of 3
+    steps): at every check step they are back where they were at the
+    previous one, which must not pass for a rigid translation (the field
+    of the step before would be kept; the drift check reports it).  The
+    drift the style reports stays at rounding, 1e-12 of the scale of h."""
     L, g = 8, 3.0
     for nprocs in (1, 2):
-        log = run_lammps(INPUTS / "in.substrate-field", {"L": L, "g": g, "deform": deform},
+        log = run_lammps(INPUTS / "in.substrate-field",
+                         {"L": L, "g": g, "deform": deform, "check": check, "move": move},
                          nprocs=nprocs, cwd=tmp_path)
-        # 61 updates: 7 at list builds (steps 0, 10, ..., 60), the others
-        # follow the positions, except where the box changed (fix deform
-        # changes it at the end of every step: from step 2 on)
-        m = re.search(r"(\d+) field updates on rank 0: .* (\d+) recomputed after list builds, "
-                      r"(\d+) non-uniform, (\d+) followed the blocks' positions", log)
+        # 61 updates: nve: 7 at list builds (steps 0, 10, ..., 60), the
+        # others follow the positions, except where the box changed (fix
+        # deform changes it at the end of every step: from step 2 on);
+        # wiggle: one list build (the setup), updates 3, 6, ..., 60 checked
+        m = re.search(r"(\d+) field updates on rank 0: (\d+) rigid translations .* "
+                      r"(\d+) recomputed after list builds, (\d+) non-uniform, (\d+) followed "
+                      r"the blocks' positions", log)
         assert m, log[-2000:]
-        assert int(m.group(1)) == 61
-        assert int(m.group(4)) == (1 if deform > 0.0 else 61 - 7)
+        counts = [int(v) for v in m.groups()]
+        if move == "wiggle":
+            assert counts == [61, 0, 1, 20, 40], counts
+            d = re.search(r"(\d+) drift checks: max \|h_incremental - h_full\| = (\S+) "
+                          r"\(scale of h: (\S+)\)", log)
+            assert d and int(d.group(1)) == 20, log[-2000:]
+            assert float(d.group(2)) <= 1e-12 * float(d.group(3)), d.group(0)
+        else:
+            assert counts[0] == 61 and counts[4] == (1 if deform > 0.0 else 61 - 7), counts
         steps, cols = fkme.read_dump(tmp_path / "field.dump")
         assert len(steps) == 9
         worst = 0.0
