@@ -407,9 +407,18 @@ void PairEQElastic::sync_ghosts()
   const int nall = atom->nlocal + atom->nghost;
   for (int i = 0; i < nall; i++) w[i] = x[i][idir] - q[i];
   ghosts_current = 1;
-  const double box[6] = {domain->xprd, domain->yprd, domain->zprd,
-                         domain->xy,   domain->xz,   domain->yz};
-  for (int k = 0; k < 6; k++) wbox[k] = box[k];
+  box_now(wbox);
+}
+
+// the box lengths and tilts: the periodic shifts of the ghosts
+void PairEQElastic::box_now(double *box) const
+{
+  box[0] = domain->xprd;
+  box[1] = domain->yprd;
+  box[2] = domain->zprd;
+  box[3] = domain->xy;
+  box[4] = domain->xz;
+  box[5] = domain->yz;
 }
 
 // q = x - w holds only while the periodic shifts of the ghosts (and the
@@ -417,8 +426,8 @@ void PairEQElastic::sync_ghosts()
 // deform, change_box between runs with run pre no)
 bool PairEQElastic::box_changed() const
 {
-  const double box[6] = {domain->xprd, domain->yprd, domain->zprd,
-                         domain->xy,   domain->xz,   domain->yz};
+  double box[6];
+  box_now(box);
   for (int k = 0; k < 6; k++)
     if (box[k] != wbox[k]) return true;
   return false;
@@ -445,6 +454,8 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
   if (fresh_ghosts) {
     sync_ghosts();
     for (int i = 0; i < nall; i++) xq[i] = x[i][d];
+    glist.clear();
+    gmark.assign(nall - nlocal, 0);
   } else {
     for (int i = 0; i < nlocal; i++) xq[i] = x[i][d];
     for (const int i : glist) {
@@ -460,10 +471,6 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
   first.assign(2 * (size_t) nlocal, 0);
   pj.clear();
   pk.clear();
-  if (fresh_ghosts) {
-    glist.clear();
-    gmark.assign(nall - nlocal, 0);
-  }
   for (int i = 0; i < nlocal; i++) {
     h[i] = ksum[i] = 0.0;
     mom[i][0] = mom[i][1] = mom[i][2] = 0.0;

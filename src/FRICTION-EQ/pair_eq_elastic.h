@@ -114,6 +114,7 @@ class PairEQElastic : public Pair, public EQElasticField {
   void allocate();
   void grow();
   void sync_ghosts();
+  void box_now(double *box) const;
   bool box_changed() const;
   void rebuild(bool fresh_ghosts);
   void pair_field();
