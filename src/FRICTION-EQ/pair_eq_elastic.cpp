@@ -554,44 +554,8 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
   vir_valid = 1;
   valid = 1;
   // blocks: a coupled pair stays in the list while the displacements of
-  // its blocks differ by less than the skin (see pair_field())
+  // its blocks differ by less than the skin (see site_field())
   if (site_distance && dubig > 0.5 * neighbor->skin) skin_error(ibig, jbig, dubig);
-}
-
-/* ----------------------------------------------------------------------
-   h and K over the cached pairs with the current coordinates (blocks,
-   whose k_ij at the sites' distance do not change between list builds).
-   A coupled pair stays in the neighbor list of the current positions as
-   long as the blocks' displacements differ by less than the skin: checked
-   with a margin of a factor 2 for the motion until the next list build.
-------------------------------------------------------------------------- */
-
-void PairEQElastic::pair_field()
-{
-  const int nlocal = atom->nlocal;
-  const int *fr = first.data();
-  const int *jv = pj.data();
-  const double *kv = pk.data();
-  const double dumax = 0.5 * neighbor->skin;
-  double dubig = 0.0;
-  int ibig = -1, jbig = -1;
-  for (int i = 0; i < nlocal; i++) {
-    const double qi = q[i];
-    if (std::isnan(qi)) continue;
-    double hi = 0.0;
-    for (int m = fr[2 * i]; m < fr[2 * i + 1]; m++) {
-      const double dq = qi - q[jv[m]];
-      hi += kv[m] * dq;
-      if (kv[m] != 0.0 && std::fabs(dq) > dubig) {
-        dubig = std::fabs(dq);
-        ibig = i;
-        jbig = jv[m];
-      }
-    }
-    h[i] = hi;
-  }
-  vir_valid = 0;
-  if (dubig > dumax) skin_error(ibig, jbig, dubig);
 }
 
 void PairEQElastic::skin_error(int i, int j, double du)
@@ -682,7 +646,7 @@ void PairEQElastic::field_update(const double *qin, bool full)
     ++n_uniform;    // a rigid translation: h, K and the virial hold
   } else {
     ++n_nonuniform;
-    if (site_distance) pair_field();
+    if (site_distance) site_field(nullptr);
     else rebuild(false);    // k_ij at the atoms' new distances
   }
   if (check_every > 0 && n_update % check_every == 0) drift_check();
@@ -707,16 +671,24 @@ bool PairEQElastic::field_advance()
   ready = 1;
   pending = 1;
   advanced = 1;    // xq are not kept (see field_update)
-  vir_valid = 0;
+  vir_valid = 0;    // the virial follows the field
   return true;
 }
 
-// h_i = sum_j k_ij (q_i - q_j) with q = x - w, and the skin check of
-// pair_field(); q of local atoms and of the ghosts of the lists follow.
-// f: the forces -h_i are added in the same pass (from compute())
+/* ----------------------------------------------------------------------
+   blocks: h_i = sum_j k_ij (q_i - q_j) over the cached pairs (k_ij at the
+   sites' distance do not change between list builds) with q = x - w; q of
+   local atoms and of the ghosts of the lists follow.  A coupled pair stays
+   in the neighbor list of the current positions as long as the blocks'
+   displacements differ by less than the skin: checked with a margin of a
+   factor 2 for the motion until the next list build.  f: the forces -h_i
+   are added in the same pass (from compute())
+------------------------------------------------------------------------- */
+
 void PairEQElastic::site_field(double **f)
 {
   pending = 0;
+  vir_valid = 0;
   const double *const *const x = atom->x;
   const int nlocal = atom->nlocal;
   const int d = idir;

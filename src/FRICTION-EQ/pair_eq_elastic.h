@@ -117,7 +117,6 @@ class PairEQElastic : public Pair, public EQElasticField {
   void box_now(double *box) const;
   bool box_changed() const;
   void rebuild(bool fresh_ghosts);
-  void pair_field();
   void site_field(double **f);
   void drift_check();
   void skin_error(int i, int j, double du);
