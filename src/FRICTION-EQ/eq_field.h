@@ -6,46 +6,80 @@
    deleted through these interfaces, and LAMMPS' own base classes differ
    between versions in the exception specification of theirs.)
 
-   - EQCoordinateSource: a fix whose atoms carry one coordinate q_i along
-     a direction (fix eq/contacts: the contacts' stretches; fix
-     eq/substrate: the blocks' displacements).
-   - EQElasticField: the elastic interaction h_i = sum_j k_ij (q_i - q_j)
-     between the atoms of a source (pair eq/elastic).  The field owns h_i
-     and K_i = sum_j k_ij; the pair style applies -h_i along the source's
-     direction.
-   - EQEventSource: a fix that can tell how far a rigid slider may advance
-     before the next event (fix eq/contacts, for fix eq/quasistatic).
+   Ownership.  Every piece of state has one owner; the others read it
+   through the calls below, and pull what they need when they need it:
 
-   Control flows one way: the source drives every force evaluation.  Before
-   the pair style computes (setup_pre_force, pre_force, min_pre_force, or
-   pre_force_respa at the pair's level) it hands the field the coordinates
-   of its local atoms at the current positions (field_update), or, for
-   sources whose coordinates move with their atoms (blocks), lets the field
-   follow the positions (field_advance); after
-   breaks at fixed positions it hands it the changes (field_change).  The
-   pair style's compute() only reads what the field holds: it never calls
-   the source.
+   - EQCoordinateSource (fix eq/contacts, eq/substrate, eq/meso) owns the
+     coordinates q_i of its atoms along its direction (the contacts'
+     stretches and anchors, the blocks' sites and displacements), the
+     break engine and the avalanche.  It counts its force evaluations and
+     the versions of its coordinates, and keeps the last change set.
+   - EQElasticField (pair_style eq/elastic) owns h_i = sum_j k_ij (q_i -
+     q_j), K_i = sum_j k_ij, the cached pairs and the ghosts' coordinates.
+     It reads the source's coordinates and change sets when it needs them
+     (field_view(), its compute()); it never writes into the source.
+   - EQEventDriver (fix eq/quasistatic) owns the slider's advance; it
+     reads the distance to the next event from an EQEventSource (fix
+     eq/contacts), which reads the driver's breaking tolerance in its own
+     init().
+
+   Partners are found afresh in every init() (EQLink, eq_lammps_util.h):
+   a style keeps the partner's address and Fix/Pair instance number for
+   one run only, and checks both before each use, so that a partner
+   removed or replaced during a run (run N pre no every M "unfix ...")
+   ends in an error naming both styles, never in a dangling access.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_EQ_FIELD_H
 #define LMP_EQ_FIELD_H
 
+#include "lmptype.h"
+
 namespace LAMMPS_NS {
+
+// coordinates that changed at fixed positions (the breaks of one
+// avalanche round): local atoms list[0..n), by dq[list[m]]
+struct EQChangeSet {
+  const int *list = nullptr;
+  int n = 0;
+  const double *dq = nullptr;
+};
 
 class EQCoordinateSource {
  protected:
   ~EQCoordinateSource() = default;    // not deleted through this interface
 
  public:
+  // "fix ID eq/contacts", for messages; the Fix's instance number (unique
+  // for the life of the process)
+  virtual const char *eq_name() const = 0;
+  virtual int eq_instance() const = 0;
   // direction of the coordinates (0, 1, 2) and group bit of the coupled atoms
   virtual int source_dir() const = 0;
   virtual int source_groupbit() const = 0;
-  // "fix ID eq/contacts", for messages
-  virtual const char *source_name() const = 0;
   // true: the distance between two coupled atoms is that of their sites
-  // (position minus coordinate along dir: blocks that move around fixed
-  // lattice sites); false: that of the atoms (contacts on a slider)
+  // (position minus coordinate along dir: blocks around fixed lattice
+  // sites), and the coordinates move with the positions only (q = x - w
+  // with w fixed between list builds); false: that of the atoms (contacts
+  // on a slider)
   virtual bool source_site_distance() const = 0;
+  // force evaluations begun (setup, step, minimizer evaluation, r-RESPA
+  // level): the positions may have changed since the previous value
+  virtual bigint source_evaluation() const = 0;
+  // changes of the coordinates at fixed positions (breaks, contacts
+  // detached) within an evaluation
+  virtual bigint source_version() const = 0;
+  // the coordinates of the local atoms now (NaN: not coupled)
+  virtual const double *source_coordinates() = 0;
+  // the change from version `since` to the current one, if it is one
+  // change set at fixed positions; false: recompute from the coordinates
+  virtual bool source_changes(bigint since, EQChangeSet &set) const = 0;
+};
+
+// what a field holds for the local atoms (valid until the source changes)
+struct EQFieldView {
+  const double *h = nullptr;    // h_i
+  const double *k = nullptr;    // K_i = sum_j k_ij
 };
 
 class EQElasticField {
@@ -53,27 +87,17 @@ class EQElasticField {
   ~EQElasticField() = default;    // not deleted through this interface
 
  public:
-  // the source this field couples (found and checked by the field's init)
-  virtual const EQCoordinateSource *field_source() const = 0;
-  // coordinates q[i] of all local atoms at the current positions (NaN: not
-  // coupled); h and K follow.  full: recompute everything (the set of
-  // coupled atoms changed)
-  virtual void field_update(const double *q, bool full = false) = 0;
-  // the coordinates changed only through the motion of the atoms since the
-  // last field_update (x - q along dir fixed for every atom: blocks between
-  // two list builds): the field follows the positions itself, without an
-  // array.  false: it needs field_update now (a list build, a new run, a
-  // drift check); all ranks answer alike
-  virtual bool field_advance() = 0;
-  // atoms list[0..n) changed their coordinate by dq[list[m]] at fixed
-  // positions (breaks): h and K of every partner follow
-  virtual void field_change(const int *list, int n, const double *dq) = 0;
-  // h_i and K_i of local atoms (valid after field_update or field_advance;
-  // after field_advance the field may compute h only when it is asked for
-  // or when the pair style computes its forces)
-  virtual const double *field_h() = 0;
-  virtual const double *field_k() const = 0;
-  // end of a run: report what the incremental updates cost and their drift
+  // "pair_style eq/elastic", the Pair's instance number, and that of the
+  // source it couples (set by its init_style(), which runs before the
+  // fixes' init())
+  virtual const char *eq_name() const = 0;
+  virtual int eq_instance() const = 0;
+  virtual int field_source_instance() const = 0;
+  // h and K for the source's coordinates at the current positions: the
+  // field pulls from the source what changed since it last looked
+  virtual EQFieldView field_view() = 0;
+  // end of a run (the source's post_run): what the updates cost, and
+  // their drift against recomputed fields
   virtual void field_report() = 0;
 };
 
@@ -82,15 +106,53 @@ class EQEventSource {
   ~EQEventSource() = default;    // not deleted through this interface
 
  public:
+  virtual const char *eq_name() const = 0;
+  virtual int eq_instance() const = 0;
   // direction and group bit of the atoms whose advance drives the events
   virtual int event_dir() const = 0;
   virtual int event_groupbit() const = 0;
-  virtual const char *event_name() const = 0;
   // advance of all atoms along +dir that brings the first one to its
   // event; global minimum over ranks (infinite: no event can happen)
   virtual double next_event() = 0;
-  // relative tolerance of the event test (the driver lands exactly on it)
-  virtual void set_event_tolerance(double tol) = 0;
+};
+
+class EQEventDriver {
+ protected:
+  ~EQEventDriver() = default;    // not deleted through this interface
+
+ public:
+  virtual const char *eq_name() const = 0;
+  virtual int eq_instance() const = 0;
+  // the fix ID of the event source this driver advances
+  virtual const char *driver_target() const = 0;
+  // relative tolerance of the source's event test (the driver lands
+  // exactly on an event, up to rounding)
+  virtual double driver_tolerance() const = 0;
+};
+
+// a partner held for one run (eq_link.h finds it again before each use):
+// its address as interface T and as the Fix or Pair it is, and its
+// instance number
+template <class T> class EQHeld {
+ public:
+  void set(T *p, const void *style)
+  {
+    ptr = p;
+    raw = p ? style : nullptr;
+    inst = p ? p->eq_instance() : -1;
+  }
+  void clear() { set(nullptr, nullptr); }
+  T *get() const { return ptr; }
+  const void *address() const { return raw; }
+  int instance() const { return inst; }
+  explicit operator bool() const { return ptr != nullptr; }
+  // t (a live style found by address) is the held one: same object, same instance
+  T *same(T *t) const { return (t && t == ptr && t->eq_instance() == inst) ? t : nullptr; }
+
+ private:
+  T *ptr = nullptr;
+  const void *raw = nullptr;
+  int inst = -1;
 };
 
 }    // namespace LAMMPS_NS

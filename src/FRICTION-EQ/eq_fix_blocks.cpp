@@ -17,6 +17,7 @@
 
 #include "eq_distribution.h"
 #include "eq_lammps_util.h"
+#include "eq_link.h"
 
 #include <cmath>
 #include <cstring>
@@ -26,7 +27,7 @@ using namespace LAMMPS_NS;
 
 FixEQBlocks::FixEQBlocks(LAMMPS *lmp, int narg, char **arg) :
     FixEQPerAtom(lmp, narg, arg), idir(0), sitecol(0), flagcol(0), ilevel_respa(0), nlevels_respa(0),
-    level_field(-1), drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0), field(nullptr)
+    drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0), nevaluation(0)
 {
   name = fmt::format("fix {} {}", id, style);
 }
@@ -59,23 +60,35 @@ bool FixEQBlocks::parse_block_keyword(const std::string &kw, const std::vector<s
 
 void FixEQBlocks::init_blocks()
 {
-  if (utils::strmatch(update->integrate_style, "^respa")) {
-    nlevels_respa = ((Respa *) update->integrate)->nlevels;
+  const bool respa = utils::strmatch(update->integrate_style, "^respa");
+  if (respa) {
+    nlevels_respa = static_cast<Respa *>(update->integrate)->nlevels;
     ilevel_respa = nlevels_respa - 1;
     if (respa_level >= 0) ilevel_respa = MIN(respa_level, ilevel_respa);
   }
-  // the elastic field that couples the blocks (pair eq/elastic), and the
-  // r-RESPA level its forces are computed at
-  field = dynamic_cast<EQElasticField *>(force->pair);
-  if (field && field->field_source() != this) field = nullptr;
-  level_field = -1;
-  if (field && utils::strmatch(update->integrate_style, "^respa")) {
-    level_field = ((Respa *) update->integrate)->level_pair;
-    if (level_field < 0)
-      error->all(FLERR, "Fix {}: pair eq/elastic must be computed at one r-RESPA level "
-                        "(run_style respa ... pair N); inner/middle/outer levels are not allowed",
-                 style);
-  }
+  // the elastic field that couples the blocks this run (its init_style()
+  // ran before and found its source)
+  field.clear();
+  int count = 0;
+  Pair *pair = EQLink::elastic_pair(force, count);
+  auto *elastic = pair ? dynamic_cast<EQElasticField *>(pair) : nullptr;
+  if (elastic && count == 1 && elastic->field_source_instance() == instance_me)
+    field.set(elastic, pair);
+  if (field && respa && static_cast<Respa *>(update->integrate)->level_pair < 0)
+    error->all(FLERR, "Fix {}: pair eq/elastic must be computed at one r-RESPA level "
+                      "(run_style respa ... pair N); inner/middle/outer levels are not allowed",
+               style);
+}
+
+const double *FixEQBlocks::field_h()
+{
+  if (!field) return nullptr;
+  EQElasticField *f = EQLink::live_pair(field, force);
+  if (!f)
+    error->all(FLERR, "Fix {} {}: pair style eq/elastic, the field of its blocks at the start of "
+                      "the run, was removed or replaced during the run (e.g. pair_style in run N "
+                      "pre no every M); use pre yes", id, style);
+  return f->field_view().h;
 }
 
 /* ----------------------------------------------------------------------
@@ -98,52 +111,47 @@ void FixEQBlocks::displacements(double *u)
 }
 
 /* ----------------------------------------------------------------------
-   the blocks' displacements to the elastic field, before every force
-   evaluation of the pair style
+   what the field reads: the displacements now, and the force evaluations
+   begun (the positions may have moved)
 ------------------------------------------------------------------------- */
 
-void FixEQBlocks::push_field()
+const double *FixEQBlocks::source_coordinates()
 {
-  // between list builds the field follows the blocks' positions (their
-  // sites do not move): no displacements to hand over
-  if (field->field_advance()) {
-    qfresh = false;
-    return;
-  }
-  if ((int) qbuf.size() < atom->nmax) qbuf.resize(atom->nmax);
+  if (static_cast<int>(qbuf.size()) < atom->nmax) qbuf.resize(atom->nmax);
   displacements(qbuf.data());
-  field->field_update(qbuf.data(), false);
-  qfresh = true;
+  return qbuf.data();
 }
 
 void FixEQBlocks::setup_pre_force(int /*vflag*/)
 {
-  if (field) push_field();
+  ++nevaluation;
 }
 
 void FixEQBlocks::pre_force(int /*vflag*/)
 {
-  if (field) push_field();
+  ++nevaluation;
 }
 
 void FixEQBlocks::min_pre_force(int /*vflag*/)
 {
-  if (field) push_field();
+  ++nevaluation;
 }
 
-void FixEQBlocks::setup_pre_force_respa(int /*vflag*/, int ilevel)
+void FixEQBlocks::setup_pre_force_respa(int /*vflag*/, int /*ilevel*/)
 {
-  if (field && ilevel == level_field) push_field();
+  ++nevaluation;
 }
 
-void FixEQBlocks::pre_force_respa(int /*vflag*/, int ilevel, int /*iloop*/)
+void FixEQBlocks::pre_force_respa(int /*vflag*/, int /*ilevel*/, int /*iloop*/)
 {
-  if (field && ilevel == level_field) push_field();
+  ++nevaluation;
 }
 
+// the field reports on its run; the link ends with the run
 void FixEQBlocks::post_run()
 {
-  if (field) field->field_report();
+  if (EQElasticField *f = EQLink::live_pair(field, force)) f->field_report();
+  field.clear();
 }
 
 /* ----------------------------------------------------------------------
@@ -162,7 +170,7 @@ void FixEQBlocks::post_integrate()
 void FixEQBlocks::post_integrate_respa(int ilevel, int /*iloop*/)
 {
   if (ilevel == ilevel_respa && drive_flag)
-    stage += vstage * ((Respa *) update->integrate)->step[ilevel];
+    stage += vstage * static_cast<Respa *>(update->integrate)->step[ilevel];
 }
 
 /* ----------------------------------------------------------------------
@@ -205,7 +213,7 @@ void FixEQBlocks::write_restart(FILE *fp)
 // springs; the stiffness K is always the command's
 void FixEQBlocks::restart(char *buf)
 {
-  const double *list = (const double *) buf;
+  const double *list = reinterpret_cast<const double *>(buf);
   const bool file_drive = list[2] != 0.0;
   if (!drive_flag) {
     if (file_drive && comm->me == 0)

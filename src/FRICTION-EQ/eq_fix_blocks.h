@@ -7,12 +7,11 @@
    along dir where its displacement u is 0, set when the block is first
    seen).  The displacements are the coordinates of an elastic field
    (pair eq/elastic couples the blocks at the distance of their sites):
-   they are handed to it before a force evaluation whenever it asks for
-   them (list builds; in between it follows the positions, the sites being
-   fixed: field_advance).  Optional driving
-   springs K tie every block to a stage at X_s that moves with velocity v:
-   keywords drive K v and stage X0, fix_modify ID velocity v, restart of
-   the stage.
+   the field reads them when it recomputes (source_coordinates()) and
+   follows the positions in between, the sites being fixed; the fix only
+   counts its force evaluations for it.  Optional driving springs K tie
+   every block to a stage at X_s that moves with velocity v: keywords
+   drive K v and stage X0, fix_modify ID velocity v, restart of the stage.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_EQ_FIX_BLOCKS_H
@@ -44,10 +43,15 @@ class FixEQBlocks : public FixEQPerAtom, public EQCoordinateSource {
 
   // EQCoordinateSource: the blocks' displacements, coupled at the
   // distance of their sites
+  const char *eq_name() const override { return name.c_str(); }
+  int eq_instance() const override { return instance_me; }
   int source_dir() const override { return idir; }
   int source_groupbit() const override { return groupbit; }
-  const char *source_name() const override { return name.c_str(); }
   bool source_site_distance() const override { return true; }
+  bigint source_evaluation() const override { return nevaluation; }
+  bigint source_version() const override { return 0; }
+  const double *source_coordinates() override;
+  bool source_changes(bigint, EQChangeSet &) const override { return false; }
 
  protected:
   std::string name;    // "fix ID style"
@@ -55,15 +59,14 @@ class FixEQBlocks : public FixEQPerAtom, public EQCoordinateSource {
   int sitecol;         // column of the site in the per-atom state
   int flagcol;         // a column that is 0 until the block is set up
   int ilevel_respa, nlevels_respa;
-  int level_field;     // r-RESPA level of the pair style's forces (-1: verlet)
   // driving springs to the stage at X_s, advanced by v dt every step
   int drive_flag;
   double kdrive, vstage, stage;
-  // the elastic field that couples the blocks (pair eq/elastic), or
-  // nullptr; the coordinates handed to it
-  EQElasticField *field;
+  // the elastic field that couples the blocks this run (pair eq/elastic),
+  // or none; the displacements it reads; force evaluations begun
+  EQHeld<EQElasticField> field;
   std::vector<double> qbuf;
-  bool qfresh = false;    // qbuf pushed since the last take_displacements()
+  bigint nevaluation;
 
   // a block first seen in the group (its site is where it is now)
   virtual void init_block(int i) = 0;
@@ -77,18 +80,8 @@ class FixEQBlocks : public FixEQPerAtom, public EQCoordinateSource {
   int modify_velocity(int narg, char **arg);
   // displacement u = x - site of every local block (NaN: not a block)
   void displacements(double *u);
-  // the displacements handed to the field in this force evaluation (the
-  // positions have not changed since: Verlet and minimizers, not r-RESPA),
-  // or nullptr; valid until the next call of take_displacements()
-  const double *take_displacements()
-  {
-    const bool ok = qfresh && level_field < 0;
-    qfresh = false;
-    return ok ? qbuf.data() : nullptr;
-  }
-
- private:
-  void push_field();
+  // h of the field at the local blocks now (nullptr: no field this run)
+  const double *field_h();
 };
 
 }    // namespace LAMMPS_NS

@@ -27,7 +27,9 @@
 
 #include "eq_contact.h"
 #include "eq_lammps_util.h"
+#include "eq_link.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -50,8 +52,8 @@ constexpr double NOT_A_CONTACT = std::numeric_limits<double>::quiet_NaN();
 
 class FixEQContacts::Hooks : public AvalancheHooks {
  public:
-  explicit Hooks(FixEQContacts *f) :
-      fix(f), h(f->field->field_h()), K(f->field->field_k()), tags(f->atom->tag)
+  Hooks(FixEQContacts *f, EQElasticField *fld) :
+      fix(f), elastic(fld), view(fld->field_view()), tags(f->atom->tag)
   {
   }
   long global_sum(long n) override
@@ -61,36 +63,35 @@ class FixEQContacts::Hooks : public AvalancheHooks {
     MPI_Allreduce(&n, &all, 1, MPI_LONG, MPI_SUM, fix->world);
     return all;
   }
+  // the fix records the change set; the field pulls it when asked for h
   void changed(const int *list, int n, const double *ds) override
   {
-    fix->field->field_change(list, n, ds);
+    fix->record_changes(list, n, ds);
+    view = elastic->field_view();
   }
   // contacts detached for good: the field without them, at fixed positions
   void detached() override
   {
-    double *const *st = fix->state;
-    for (int i = 0; i < fix->atom->nlocal; i++) {
-      double &qi = fix->qbuf[i];
-      if (std::isnan(qi)) continue;
-      qi = st[i][CS_THRESHOLD] > 0.0 ? st[i][CS_STRETCH] : NOT_A_CONTACT;
-    }
-    fix->field->field_update(fix->qbuf.data(), true);
+    fix->record_detached();
+    view = elastic->field_view();
   }
-  double field(int i) const override { return h[i]; }
-  double coupling(int i) const override { return K[i]; }
-  uint64_t tag(int i) const override { return (uint64_t) tags[i]; }
+  double field(int i) const override { return view.h[i]; }
+  double coupling(int i) const override { return view.k[i]; }
+  uint64_t tag(int i) const override { return static_cast<uint64_t>(tags[i]); }
+  const EQFieldView &last_view() const { return view; }
 
  private:
   FixEQContacts *fix;
-  const double *h, *K;
+  EQElasticField *elastic;
+  EQFieldView view;
   const tagint *tags;
 };
 
 /* ---------------------------------------------------------------------- */
 
 FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
-    FixEQPerAtom(lmp, narg, arg), break_tol(0.0), field(nullptr), avfp(nullptr), av_flag(0),
-    rounds_last(0)
+    FixEQPerAtom(lmp, narg, arg), break_tol(0.0), interacting(0), avfp(nullptr), av_flag(0),
+    rounds_last(0), nevaluation(0), nversion(0), chg_from(-1)
 {
   name = fmt::format("fix {} eq/contacts", id);
   double kc;
@@ -249,6 +250,8 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   local_breaks_total = breaks_offset = 0;
   reduced_step = -1;
   reduced_valid = 0;
+  // the outputs before the first run: those of the contacts just formed
+  tally(nullptr);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -278,15 +281,42 @@ int FixEQContacts::setmask()
 void FixEQContacts::init()
 {
   if (utils::strmatch(update->integrate_style, "^respa")) {
-    ilevel_respa = ((Respa *) update->integrate)->nlevels - 1;
+    ilevel_respa = static_cast<Respa *>(update->integrate)->nlevels - 1;
     if (respa_level >= 0) ilevel_respa = MIN(respa_level, ilevel_respa);
   }
-  // the interaction between contacts: the pair style that is their field
-  field = dynamic_cast<EQElasticField *>(force->pair);
-  if (field && field->field_source() != this) field = nullptr;
+  // the interaction between contacts: the pair style eq/elastic that is
+  // their field this run (its init_style() ran before and found its
+  // source); with pair_modify compute no it is not used
+  field.clear();
+  int count = 0;
+  Pair *pair = EQLink::elastic_pair(force, count);
+  auto *elastic = pair ? dynamic_cast<EQElasticField *>(pair) : nullptr;
+  if (elastic && count == 1 && pair->compute_flag && elastic->field_source_instance() == instance_me)
+    field.set(elastic, pair);
+  interacting = field ? 1 : 0;
   if (field && utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix eq/contacts with pair style eq/elastic does not support run_style "
                       "respa; allowed: run_style verlet");
+  // the tolerance of the breaking test: that of a driver that lands the
+  // slider exactly on the next break (fix eq/quasistatic), else none
+  break_tol = 0.0;
+  for (int i = 0; i < modify->nfix; i++) {
+    auto *driver = dynamic_cast<EQEventDriver *>(modify->fix[i]);
+    if (driver && strcmp(driver->driver_target(), id) == 0)
+      break_tol = std::max(break_tol, driver->driver_tolerance());
+  }
+}
+
+// the field of this run, if it is still the one found at init
+EQElasticField *FixEQContacts::field_now()
+{
+  EQElasticField *f = EQLink::live_pair(field, force);
+  if (!f)
+    error->all(FLERR, "Fix {} eq/contacts: pair style eq/elastic, the field of its contacts at the "
+                      "start of the run, was removed or replaced during the run (e.g. pair_style in "
+                      "run N pre no every M); the contacts cannot go on without it: use pre yes",
+               id);
+  return f;
 }
 
 /* ----------------------------------------------------------------------
@@ -305,6 +335,7 @@ void FixEQContacts::mark_departed()
 
 void FixEQContacts::setup_pre_force(int /*vflag*/)
 {
+  ++nevaluation;
   if (!field) return;
   mark_departed();
   // contacts break during runs only, not during minimization
@@ -313,11 +344,13 @@ void FixEQContacts::setup_pre_force(int /*vflag*/)
 
 void FixEQContacts::pre_force(int /*vflag*/)
 {
+  ++nevaluation;
   if (field) field_step(true);
 }
 
 void FixEQContacts::min_pre_force(int /*vflag*/)
 {
+  ++nevaluation;
   if (field) field_step(false);
 }
 
@@ -377,9 +410,11 @@ void FixEQContacts::min_post_force(int /*vflag*/)
   else apply(false);
 }
 
+// the field reports on its run; the link ends with the run
 void FixEQContacts::post_run()
 {
-  if (field) field->field_report();
+  if (EQElasticField *f = EQLink::live_pair(field, force)) f->field_report();
+  field.clear();
 }
 
 /* ----------------------------------------------------------------------
@@ -458,14 +493,14 @@ void FixEQContacts::stretches()
   const tagint *const tag = atom->tag;
   const int nlocal = atom->nlocal;
   const EQUtil::Unwrap unwrap(atom, domain, idir);
-  if ((int) qbuf.size() < atom->nmax) qbuf.resize(atom->nmax);
+  if (static_cast<int>(qbuf.size()) < atom->nmax) qbuf.resize(atom->nmax);
   members.clear();
   try {
     for (int i = 0; i < nlocal; i++) {
       qbuf[i] = NOT_A_CONTACT;
       if (!(mask[i] & groupbit)) continue;
       double *const st = state[i];
-      if (st[CS_THRESHOLD] == 0.0) model->form(st, (uint64_t) tag[i], unwrap(i));
+      if (st[CS_THRESHOLD] == 0.0) model->form(st, static_cast<uint64_t>(tag[i]), unwrap(i));
       if (st[CS_THRESHOLD] < 0.0) {
         st[CS_STRETCH] = st[CS_FORCE] = st[CS_FIELD] = 0.0;
         continue;
@@ -480,35 +515,74 @@ void FixEQContacts::stretches()
   }
 }
 
+/* ----------------------------------------------------------------------
+   what the field reads: the stretches of this evaluation, and the change
+   set of the last avalanche round (valid until the next round)
+------------------------------------------------------------------------- */
+
+const double *FixEQContacts::source_coordinates()
+{
+  if (static_cast<int>(qbuf.size()) < atom->nlocal) stretches();
+  return qbuf.data();
+}
+
+bool FixEQContacts::source_changes(bigint since, EQChangeSet &set) const
+{
+  if (since != chg_from) return false;
+  set = chg;
+  return true;
+}
+
+void FixEQContacts::record_changes(const int *list, int n, const double *ds)
+{
+  for (int m = 0; m < n; m++) qbuf[list[m]] += ds[list[m]];
+  chg.list = list;
+  chg.n = n;
+  chg.dq = ds;
+  chg_from = nversion++;
+}
+
+// contacts detached for good leave the field: not a change set
+void FixEQContacts::record_detached()
+{
+  double *const *st = state;
+  for (const int i : members) qbuf[i] = st[i][CS_THRESHOLD] > 0.0 ? st[i][CS_STRETCH] : NOT_A_CONTACT;
+  chg_from = -1;
+  ++nversion;
+}
+
 void FixEQContacts::field_step(bool allow_breaks)
 {
+  EQElasticField *elastic = field_now();
   stretches();
-  field->field_update(qbuf.data(), false);
   local_sum[SUM_BREAKS] = 0.0;
   rounds_last = 0;
+  EQFieldView view;
   if (allow_breaks) {
-    Hooks hooks(this);
+    Hooks hooks(this, elastic);
     AvalancheResult res;
     try {
-      res = avalanche(*model, state, members.data(), (int) members.size(), break_tol, hooks, blist,
-                      dsv);
+      res = avalanche(*model, state, members.data(), static_cast<int>(members.size()), break_tol,
+                      hooks, blist, dsv);
     } catch (const BreakError &e) {
       error->one(FLERR, "Fix eq/contacts: {}", e.what());
     }
     local_breaks_total += res.local;
-    local_sum[SUM_BREAKS] = (double) res.local;
+    local_sum[SUM_BREAKS] = static_cast<double>(res.local);
     rounds_last = res.rounds;
     if (res.size > 0 && av_flag) record_avalanche(res.size, res.trigger, res.rounds);
+    view = hooks.last_view();
+  } else {
+    view = elastic->field_view();
   }
   // the field of the final state, for the output and next_event(); the
   // stretches of broken contacts as every later evaluation at these
   // positions finds them (x - anchor), so that run 0 or a restart changes
   // nothing (they differ from the engine's by rounding)
-  const double *h = field->field_h();
   const EQUtil::Unwrap unwrap(atom, domain, idir);
   for (const int i : members) {
     double *st = state[i];
-    st[CS_FIELD] = st[CS_THRESHOLD] > 0.0 ? h[i] : 0.0;
+    st[CS_FIELD] = st[CS_THRESHOLD] > 0.0 ? view.h[i] : 0.0;
     if (st[CS_THRESHOLD] > 0.0 && local_sum[SUM_BREAKS] > 0.0)
       st[CS_STRETCH] = unwrap.fix(unwrap(i) - st[CS_ANCHOR]);
   }
@@ -523,7 +597,13 @@ void FixEQContacts::record_avalanche(bigint size, bigint trigger, int rounds)
 // spring forces -k_i x_i of the state prepared by field_step()
 void FixEQContacts::apply_forces()
 {
-  double *const *const f = atom->f;
+  tally(atom->f);
+}
+
+// the sums of the output from the contacts' state, and their spring
+// forces -k_i s_i into f (nullptr: the sums only, e.g. at definition)
+void FixEQContacts::tally(double **f)
+{
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int d = idir;
@@ -536,7 +616,7 @@ void FixEQContacts::apply_forces()
     const double s = st[CS_STRETCH];
     const double fc = st[CS_STIFFNESS] * s;
     st[CS_FORCE] = fc;
-    f[i][d] -= fc;
+    if (f) f[i][d] -= fc;
     fsum += fc;
     esum += fc * s;
     ssum += s;
@@ -547,7 +627,7 @@ void FixEQContacts::apply_forces()
   local_sum[SUM_ENERGY] = 0.5 * esum;
   local_sum[SUM_STRETCH] = ssum;
   local_sum[SUM_COUNT] = ncount;
-  local_sum[SUM_TOTAL] = (double) local_breaks_total;
+  local_sum[SUM_TOTAL] = static_cast<double>(local_breaks_total);
   reduced_valid = 0;
 }
 
@@ -607,7 +687,7 @@ double FixEQContacts::compute_vector(int n)
                                             : 0.0;
     case 6: reduce(); return global_sum[SUM_COUNT];
     case 7:
-      if (!field && !av_flag) {
+      if (!interacting && !av_flag) {
         reduce();
         return global_sum[SUM_BREAKS] > 0.0 ? 1.0 : 0.0;
       }

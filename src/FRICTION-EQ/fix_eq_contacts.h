@@ -57,17 +57,20 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   int modify_param(int, char **) override;
 
   // EQCoordinateSource: the contacts' stretches
+  const char *eq_name() const override { return name.c_str(); }
+  int eq_instance() const override { return instance_me; }
   int source_dir() const override { return idir; }
   int source_groupbit() const override { return groupbit; }
-  const char *source_name() const override { return name.c_str(); }
   bool source_site_distance() const override { return false; }
+  bigint source_evaluation() const override { return nevaluation; }
+  bigint source_version() const override { return nversion; }
+  const double *source_coordinates() override;
+  bool source_changes(bigint since, EQChangeSet &set) const override;
 
   // EQEventSource (fix eq/quasistatic)
   int event_dir() const override { return idir; }
   int event_groupbit() const override { return groupbit; }
-  const char *event_name() const override { return name.c_str(); }
   double next_event() override;
-  void set_event_tolerance(double tol) override { break_tol = tol; }
 
  private:
   std::unique_ptr<feq::ContactModel> model;
@@ -75,15 +78,21 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   bigint seed;
   int idir;            // sliding direction 0,1,2
   int ilevel_respa;
-  double break_tol;    // relative tolerance of the breaking test
-  EQElasticField *field;    // the interaction, or nullptr
-  FILE *avfp;               // avalanche records (rank 0), or nullptr
-  int av_flag;              // avalanche records requested
-  int rounds_last;          // rounds of the last step's avalanche
+  double break_tol;    // relative tolerance of the breaking test (from a driver, see init())
+  EQHeld<EQElasticField> field;    // the interaction of this run, or none
+  int interacting;                 // the last run had one (output semantics)
+  FILE *avfp;                      // avalanche records (rank 0), or nullptr
+  int av_flag;                     // avalanche records requested
+  int rounds_last;                 // rounds of the last step's avalanche
 
-  // scratch: coordinates handed to the field, local contacts, avalanche lists
+  // the coordinates this fix owns for the field: the stretches of the
+  // local contacts at the current evaluation (NaN: not a contact), the
+  // counters of evaluations and versions, and the last change set (the
+  // breaks of an avalanche round, from version chg_from)
   std::vector<double> qbuf, dsv;
   std::vector<int> members, blist;
+  bigint nevaluation, nversion, chg_from;
+  EQChangeSet chg;
 
   // local sums of the last force evaluation; reduced on demand
   double local_sum[7];
@@ -96,10 +105,14 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   friend class Hooks;
 
   void mark_departed();
+  EQElasticField *field_now();
   void stretches();
   void field_step(bool allow_breaks);
+  void record_changes(const int *list, int n, const double *ds);
+  void record_detached();
   void apply(bool allow_breaks);
   void apply_forces();
+  void tally(double **f);
   void record_avalanche(bigint size, bigint trigger, int rounds);
   void reduce();
 };

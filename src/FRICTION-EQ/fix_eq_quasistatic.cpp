@@ -12,8 +12,8 @@
 #include "update.h"
 #include "utils.h"
 
-#include "eq_field.h"
 #include "eq_lammps_util.h"
+#include "eq_link.h"
 
 #include <cmath>
 
@@ -27,8 +27,9 @@ constexpr double QS_TOLERANCE = 1.0e-13;
 }    // namespace
 
 FixEQQuasistatic::FixEQQuasistatic(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), contacts(nullptr), dxmax(0.0), xtotal(0.0), dx_last(0.0), idir(0)
+    Fix(lmp, narg, arg), dxmax(0.0), xtotal(0.0), dx_last(0.0), idir(0)
 {
+  name = fmt::format("fix {} eq/quasistatic", id);
   if (group->dynamic[igroup])
     error->all(FLERR, "Fix eq/quasistatic: group {} is dynamic; allowed: a static group",
                group->names[igroup]);
@@ -59,42 +60,36 @@ FixEQQuasistatic::FixEQQuasistatic(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
 }
 
-FixEQQuasistatic::~FixEQQuasistatic()
-{
-  release();
-}
-
-// the contacts return to the plain breaking test when this fix goes away
-void FixEQQuasistatic::release()
-{
-  const int ifix = modify->find_fix(contacts_id);
-  if (ifix >= 0 && contacts && dynamic_cast<EQEventSource *>(modify->fix[ifix]) == contacts)
-    contacts->set_event_tolerance(0.0);
-}
-
 int FixEQQuasistatic::setmask()
 {
-  return INITIAL_INTEGRATE;
+  return INITIAL_INTEGRATE | POST_RUN;
+}
+
+double FixEQQuasistatic::driver_tolerance() const
+{
+  return QS_TOLERANCE;
 }
 
 void FixEQQuasistatic::init()
 {
-  const int ifix = modify->find_fix(contacts_id);
-  if (ifix < 0)
-    error->all(FLERR, "Fix eq/quasistatic: fix ID {} does not exist; expected the ID of a fix "
-                      "eq/contacts", contacts_id);
-  contacts = dynamic_cast<EQEventSource *>(modify->fix[ifix]);
-  if (!contacts)
-    error->all(FLERR, "Fix eq/quasistatic: fix {} is a fix {}, not eq/contacts", contacts_id,
-               modify->fix[ifix]->style);
-  idir = contacts->event_dir();
-  contacts->set_event_tolerance(QS_TOLERANCE);
+  contacts.clear();
+  Fix *found = nullptr;
+  EQEventSource *source = EQLink::fix_as<EQEventSource>(modify, contacts_id, &found);
+  if (!found)
+    error->all(FLERR, "Fix {} eq/quasistatic: fix ID {} does not exist; expected the ID of a fix "
+                      "eq/contacts", id, contacts_id);
+  if (!source)
+    error->all(FLERR, "Fix {} eq/quasistatic: fix {} is a fix {}, not eq/contacts", id,
+               contacts_id, found->style);
+  contacts.set(source, found);
+  contacts_label = source->eq_name();
+  idir = source->event_dir();
 
   // the advance to the next break assumes that every contact moves with
   // the slider (then the field only changes by breaks)
   const int *mask = atom->mask;
   bigint missing = 0;
-  const int cbit = contacts->event_groupbit();
+  const int cbit = source->event_groupbit();
   for (int i = 0; i < atom->nlocal; i++)
     if ((mask[i] & cbit) && !(mask[i] & groupbit)) ++missing;
   bigint all = 0;
@@ -103,10 +98,52 @@ void FixEQQuasistatic::init()
     error->all(FLERR, "Fix eq/quasistatic: group {} leaves {} contacts of fix {} (group {}) "
                       "behind; the advance to the next break assumes that every contact moves "
                       "with the slider: use a group that contains group {}",
-               group->names[igroup], all, contacts_id, group->names[modify->fix[ifix]->igroup],
-               group->names[modify->fix[ifix]->igroup]);
+               group->names[igroup], all, contacts_id, group->names[found->igroup],
+               group->names[found->igroup]);
   if (!utils::strmatch(update->integrate_style, "^verlet"))
     error->all(FLERR, "Fix eq/quasistatic requires run_style verlet");
+  check_integrators();
+}
+
+/* ----------------------------------------------------------------------
+   this fix sets the slider's positions: no other fix may move its atoms
+   (fix move, nve, rigid, ...: the advance to the next break would be off
+   by their motion)
+------------------------------------------------------------------------- */
+
+void FixEQQuasistatic::check_integrators()
+{
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  for (int k = 0; k < modify->nfix; k++) {
+    Fix *other = modify->fix[k];
+    if (other == this || !other->time_integrate) continue;
+    bigint shared = 0, all = 0;
+    for (int i = 0; i < nlocal; i++)
+      if ((mask[i] & groupbit) && (mask[i] & other->groupbit)) ++shared;
+    MPI_Allreduce(&shared, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+    if (all > 0)
+      error->all(FLERR, "Fix {} eq/quasistatic and fix {} {} both move {} atoms: fix "
+                        "eq/quasistatic advances the slider exactly to the next break and must be "
+                        "the only fix that moves its atoms; unfix one of them", id, other->id,
+                 other->style, all);
+  }
+}
+
+// the contacts of this run, if they are still the fix found at init
+EQEventSource *FixEQQuasistatic::contacts_now()
+{
+  EQEventSource *c = EQLink::live_fix(contacts, modify);
+  if (!c)
+    error->all(FLERR, "Fix {} eq/quasistatic: {}, the contacts it drives, was removed or replaced "
+                      "during the run (e.g. unfix in run N pre no every M); use pre yes, or define "
+                      "the fixes anew between runs", id, contacts_label);
+  return c;
+}
+
+void FixEQQuasistatic::post_run()
+{
+  contacts.clear();
 }
 
 /* ----------------------------------------------------------------------
@@ -116,7 +153,7 @@ void FixEQQuasistatic::init()
 
 void FixEQQuasistatic::initial_integrate(int /*vflag*/)
 {
-  double dx = contacts->next_event();
+  double dx = contacts_now()->next_event();
   if (!std::isfinite(dx)) {
     if (dxmax > 0.0) dx = dxmax;
     else
@@ -159,5 +196,5 @@ void FixEQQuasistatic::write_restart(FILE *fp)
 
 void FixEQQuasistatic::restart(char *buf)
 {
-  xtotal = ((double *) buf)[0];
+  xtotal = reinterpret_cast<double *>(buf)[0];
 }

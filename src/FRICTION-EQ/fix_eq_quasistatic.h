@@ -22,30 +22,41 @@ FixStyle(eq/quasistatic,FixEQQuasistatic);
 
 #include "fix.h"
 
+#include "eq_field.h"
+
 #include <string>
 
 namespace LAMMPS_NS {
 
-class FixEQQuasistatic : public Fix {
+class FixEQQuasistatic : public Fix, public EQEventDriver {
  public:
   FixEQQuasistatic(class LAMMPS *, int, char **);
-  ~FixEQQuasistatic() override;
   int setmask() override;
   void init() override;
   void initial_integrate(int) override;
+  void post_run() override;
   double compute_scalar() override;
   double compute_vector(int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
 
+  // EQEventDriver: the contacts' breaking test lands exactly on the event
+  const char *eq_name() const override { return name.c_str(); }
+  int eq_instance() const override { return instance_me; }
+  const char *driver_target() const override { return contacts_id.c_str(); }
+  double driver_tolerance() const override;
+
  private:
+  std::string name;           // "fix ID eq/quasistatic"
   std::string contacts_id;
-  class EQEventSource *contacts;
+  std::string contacts_label;        // "fix ID eq/contacts", for messages after it is gone
+  EQHeld<EQEventSource> contacts;    // the event source of this run
   double dxmax;      // largest advance per step (0: none)
   double xtotal;     // slider displacement since the fix was defined
   double dx_last;    // advance of the last step
   int idir;
-  void release();
+  EQEventSource *contacts_now();
+  void check_integrators();
 };
 
 }    // namespace LAMMPS_NS

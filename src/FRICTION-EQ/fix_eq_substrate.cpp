@@ -36,7 +36,7 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 namespace {
-const char *KEYWORDS = "dir, drive, stage, reverse, crossing, disorder";
+const char *KEYWORDS = "dir, drive, stage, reverse, crossing, integrator, disorder";
 const char *SHAPES = "sawtooth, smooth, table";
 // global vector: f = K X_s, X_s, v_stage, <v>, <u>, sum F_s, sum drive, E_sub, E_drive, N
 enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE, V_COUNT, NVEC };
@@ -45,7 +45,8 @@ enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE
 /* ---------------------------------------------------------------------- */
 
 FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
-    FixEQBlocks(lmp, narg, arg), rev_break(0), exact(1), window(0.5), dseed(0), njump(0),
+    FixEQBlocks(lmp, narg, arg), rev_break(0), exact(1), integrator(Integrator::AUTO), window(0.5),
+    dseed(0), njump(0),
     jump_step(-1), jump_tag(0), jump_size(0.0), neval(0), reduced_eval(-1), chained(0),
     fsub_valid(0)
 {
@@ -118,6 +119,16 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
         if (v == "exact") exact = 1;
         else if (v == "step") exact = 0;
         else throw feq::SpecError("crossing: unknown value '" + v + "'; allowed: exact, step");
+      } else if (kw == "integrator") {
+        if (iarg >= args.size())
+          throw feq::SpecError("integrator: missing value; allowed: auto, verlet, overdamped");
+        const std::string &v = args[iarg++];
+        if (v == "auto") integrator = Integrator::AUTO;
+        else if (v == "verlet") integrator = Integrator::VERLET;
+        else if (v == "overdamped") integrator = Integrator::OVERDAMPED;
+        else
+          throw feq::SpecError("integrator: unknown value '" + v +
+                               "'; allowed: auto, verlet, overdamped");
       } else if (kw == "reverse") {
         if (iarg >= args.size()) throw feq::SpecError("reverse: missing value; allowed: periodic, break");
         const std::string &v = args[iarg++];
@@ -231,29 +242,47 @@ int FixEQSubstrate::setmask()
 void FixEQSubstrate::init()
 {
   init_blocks();
-  // the force window of the integrator (crossing exact), told by what the
-  // time-integrating fixes do: one that only updates the positions from
-  // the current forces (initial_integrate alone: first-order overdamped,
-  // e.g. fix brownian) applies F(x_n) over [t_n, t_n+1]; the
-  // velocity-Verlet family (initial and final integrate) over
-  // [t_n+1/2, t_n+3/2]
-  int overdamped = 0, verlet = 0;
-  for (int i = 0; i < modify->nfix; i++) {
-    if (!modify->fix[i]->time_integrate) continue;
-    if (modify->fmask[i] & FINAL_INTEGRATE) verlet = 1;
-    else overdamped = 1;
-  }
-  if (overdamped && verlet && exact && comm->me == 0)
-    error->warning(FLERR, "Fix eq/substrate: both first-order (initial_integrate only) and "
-                          "velocity-Verlet time integrators are defined; crossings are corrected "
-                          "for the first-order one");
-  const double w = overdamped ? 1.0 : 0.5;
+  const double w = force_window();
   if (exact && w != window && comm->me == 0)
     utils::logmesg(lmp, "fix eq/substrate: crossings corrected for a force window of {} "
                         "({} integrator)\n", w == 1.0 ? "[t_n, t_n+1]" : "[t_n+1/2, t_n+3/2]",
-                   overdamped ? "first-order overdamped" : "velocity-Verlet");
+                   w == 1.0 ? "first-order overdamped" : "velocity-Verlet");
   window = w;
+}
 
+/* ----------------------------------------------------------------------
+   the force window of the integrator (crossing exact): given by the
+   integrator keyword, or read off the time-integrating fixes that move
+   blocks: one that only updates the positions from the current forces
+   (initial_integrate alone: first-order overdamped, e.g. fix brownian)
+   applies F(x_n) over [t_n, t_n+1], the velocity-Verlet family (initial
+   and final integrate) over [t_n+1/2, t_n+3/2].  Both kinds at once
+   cannot be read unambiguously: the keyword must say.
+------------------------------------------------------------------------- */
+
+double FixEQSubstrate::force_window()
+{
+  if (integrator == Integrator::VERLET) return 0.5;
+  if (integrator == Integrator::OVERDAMPED) return 1.0;
+  std::string first, second;
+  const int *mask = atom->mask;
+  for (int k = 0; k < modify->nfix; k++) {
+    Fix *other = modify->fix[k];
+    if (!other->time_integrate) continue;
+    int mine = 0, any = 0;
+    for (int i = 0; i < atom->nlocal && !mine; i++)
+      mine = (mask[i] & groupbit) && (mask[i] & other->groupbit);
+    MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, world);
+    if (!any) continue;
+    std::string &kind = (modify->fmask[k] & FINAL_INTEGRATE) ? second : first;
+    if (kind.empty()) kind = fmt::format("fix {} {}", other->id, other->style);
+  }
+  if (!first.empty() && !second.empty() && exact)
+    error->all(FLERR, "Fix {} eq/substrate: its blocks are moved by a first-order integrator ({}) "
+                      "and a velocity-Verlet one ({}): the crossing correction cannot tell the force "
+                      "window; set integrator verlet or integrator overdamped (or crossing step)",
+               id, first, second);
+  return first.empty() ? 0.5 : 1.0;
 }
 
 void FixEQSubstrate::setup(int vflag)
@@ -327,7 +356,7 @@ void FixEQSubstrate::apply()
   const int nlocal = atom->nlocal;
   const int d = idir;
   const EQUtil::Unwrap unwrap(atom, domain, d);
-  const double *const hfield = field ? field->field_h() : nullptr;
+  const double *const hfield = field_h();
   const double Xs = stage;
   const double K = kdrive;
   const double uc = shape.period();
@@ -344,15 +373,12 @@ void FixEQSubstrate::apply()
   // the run continues as if it had not been split
   const bool keep = exact && fsub_valid && update->whichflag == 1 && update->setupflag;
   const double half = 0.5 * uc;
-  // the displacements pushed to the field in this force evaluation: the
-  // same numbers, not computed twice
-  const double *const upushed = take_displacements();
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     double *const st = state[i];
     if (st[DISORDER] == 0.0) init_block(i);
-    const double u = upushed ? upushed[i] : unwrap.fix(unwrap(i) - st[SITE]);
+    const double u = unwrap.fix(unwrap(i) - st[SITE]);
     if (!std::isfinite(u))
       error->one(FLERR,
                  "Fix eq/substrate: displacement of block {} is {} (numerical instability: "

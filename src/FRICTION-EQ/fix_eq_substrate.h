@@ -64,8 +64,11 @@ class FixEQSubstrate : public FixEQBlocks {
   int rev_break;
   // crossing exact: impulse correction where a block passes the end of its
   // well; window: where in the step the integrator applies a force (1: fix
-  // brownian's [t_n, t_n+1], 1/2: velocity Verlet's [t_n+1/2, t_n+3/2])
+  // brownian's [t_n, t_n+1], 1/2: velocity Verlet's [t_n+1/2, t_n+3/2]),
+  // from the integrator keyword or read off the integrating fixes
+  enum class Integrator { AUTO, VERLET, OVERDAMPED };
   int exact;
+  Integrator integrator;
   double window;
   // quenched disorder of the blocks' k_c (threshold force) factors d_n
   feq::DistributionSpec disorder;
@@ -92,6 +95,7 @@ class FixEQSubstrate : public FixEQBlocks {
 
   void init_block(int i) override;
   void apply();
+  double force_window();
 };
 
 }    // namespace LAMMPS_NS

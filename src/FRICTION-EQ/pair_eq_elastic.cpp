@@ -9,28 +9,30 @@
    along the source's direction.  The kernel k(r) is a LAMMPS-free unit
    (lib/eq_kernel.h).
 
-   Incremental field.  The source hands over its coordinates before every
-   force evaluation (field_update) and the changes of breaks at fixed
-   positions (field_change).  Between two neighbor list builds:
-   - if every coupled atom this rank holds (local and ghost) moved by the
-     same distance along dir since the last update (to the rounding of the
-     positions), h is unchanged: a rigid slider costs O(N) and no pair
-     work, whatever the cutoff;
-   - a break changes h of its partners only: O(breaks x neighbours), one
-     reverse communication per avalanche round;
-   - otherwise (blocks moving one by one, a deforming slider) h is
-     recomputed over the pairs of the list, cached with their k_ij at the
-     list build (blocks: the distance of their sites is fixed);
-   - blocks (sites fixed) need no array at all: q = x - w along dir, and
-     h and the forces are computed in one pass in compute()
-     (field_advance).
-   Only the coupled ghosts of the lists (glist) are followed; a change of
-   the box (the ghosts' periodic shifts) recomputes everything.
-   After every list build, and every `check` updates as a drift check
-   whose result is reported at the end of each run, h is recomputed from
-   scratch.  A full neighbor list gives every atom all its partners, so
-   h is complete on the owner and a break's changes reach the partners'
-   owners by one reverse communication.
+   Who owns what (eq_field.h): the source owns the coordinates, their
+   force evaluations and versions, and its change sets; this style owns
+   the field and everything cached for it, and reads from the source what
+   it needs when it needs it (refresh(): from field_view(), which the
+   contacts call before and after every avalanche round, and from
+   compute()).  It never writes into the source.
+
+   Incremental field, within one validity key (see refresh()):
+   - contacts: when every coupled atom this rank holds (local and ghost)
+     moved by the same distance along dir since the last evaluation (to
+     the rounding of the positions), h is unchanged: a rigid slider costs
+     O(N) and no pair work, whatever the cutoff; otherwise h is recomputed
+     over the pairs of the list, cached with their k_ij at the list build;
+   - a change set of the source (the breaks of an avalanche round) changes
+     h of the partners only: O(breaks x neighbours), one reverse
+     communication per round;
+   - blocks (sites fixed): q = x - w along dir, h and the forces in one
+     pass over the cached pairs in compute().
+   Only the coupled ghosts of the lists (glist) are followed.  Every
+   `check` updates the field is recomputed from scratch as a drift check
+   whose result is reported at the end of each run.  A full neighbor list
+   gives every atom all its partners, so h is complete on the owner and a
+   break's changes reach the partners' owners by one reverse
+   communication.
 ------------------------------------------------------------------------- */
 
 #include "pair_eq_elastic.h"
@@ -51,6 +53,7 @@
 #include "eq_distribution.h"
 #include "eq_lammps_compat.h"
 #include "eq_lammps_util.h"
+#include "eq_link.h"
 
 #include <cmath>
 #include <cstring>
@@ -76,13 +79,14 @@ const char *USAGE = "expected 'pair_coeff I J ftilde lambda_c [rcut]' or "
 
 PairEQElastic::PairEQElastic(LAMMPS *lmp) :
     Pair(lmp), check_every(CHECK_DEFAULT), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr),
-    lambda(nullptr), kidx(nullptr), mixed(nullptr), anisotropic(0), source(nullptr), idir(0),
-    sgroupbit(0), site_distance(false), nmax(0), q(nullptr), xq(nullptr), w(nullptr),
-    h(nullptr), ksum(nullptr), dh(nullptr), mom(nullptr), valid(0), ghosts_current(0), ready(0), pending(0), advanced(0),
-    vir_valid(0), comm_mode(0)
+    lambda(nullptr), kidx(nullptr), mixed(nullptr), anisotropic(0), ncoeff(0), ncoeff_init(0),
+    idir(0), site_distance(false), nmax(0), q(nullptr), xq(nullptr), w(nullptr), h(nullptr),
+    ksum(nullptr), dh(nullptr), mom(nullptr), key(), key_set(false), eval_seen(-1),
+    version_seen(-1), ghost_version(-1), eval_computed(-1), eval_built(-1), pending(0), nfield(0),
+    vir_at(-1), comm_mode(0)
 {
   single_enable = 1;
-  single_extra = 2;
+  single_extra = 7;
   svector = new double[single_extra];
   restartinfo = 1;
   reinitflag = 0;    // see reinit()
@@ -94,7 +98,6 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
   comm_reverse = 1;
   cut_global = 0.0;
   wvir[0] = wvir[1] = wvir[2] = 0.0;
-  for (double &b : wbox) b = 0.0;
   n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = 0;
   drift_max = hscale_max = 0.0;
 }
@@ -162,8 +165,8 @@ void PairEQElastic::grow()
   memory->create(h, nmax, "pair:h");
   memory->create(ksum, nmax, "pair:ksum");
   memory->create(dh, nmax, "pair:dh");
-  mom = (double(*)[3]) memory->smalloc(sizeof(double[3]) * nmax, "pair:mom");
-  valid = 0;
+  mom = static_cast<double(*)[3]>(memory->smalloc(sizeof(double[3]) * nmax, "pair:mom"));
+  key_set = false;    // the arrays hold nothing now
 }
 
 /* ----------------------------------------------------------------------
@@ -281,7 +284,8 @@ void PairEQElastic::coeff(int narg, char **arg)
   }
 
   kernels.push_back(kern);
-  const int k = (int) kernels.size() - 1;
+  ++ncoeff;
+  const int k = static_cast<int>(kernels.size()) - 1;
   int count = 0;
   for (int i = ilo; i <= ihi; i++) {
     for (int j = MAX(jlo, i); j <= jhi; j++) {
@@ -298,25 +302,33 @@ void PairEQElastic::coeff(int narg, char **arg)
 }
 
 /* ----------------------------------------------------------------------
-   the coordinate source: exactly one fix of the package that provides
-   coordinates (fix eq/contacts, fix eq/substrate)
+   the coordinate source of this run: exactly one fix of the package that
+   provides coordinates (fix eq/contacts, eq/substrate, eq/meso)
 ------------------------------------------------------------------------- */
 
 void PairEQElastic::init_style()
 {
   if (!atom->tag_enable) error->all(FLERR, "Pair style eq/elastic requires atom IDs");
-  if (force->pair != this)
-    error->all(FLERR, "Pair style eq/elastic cannot be a sub-style of pair hybrid: it is the "
-                      "elastic field of its fix and must be the only pair style");
+  int nfield = 0;
+  EQLink::elastic_pair(force, nfield);
+  if (nfield > 1)
+    error->all(FLERR, "Pair style {} has {} sub-styles eq/elastic; allowed: one (the elastic "
+                      "field of the contacts or blocks is one interaction: give all its type pairs "
+                      "to one sub-style)", force->pair_style, nfield);
 
-  source = nullptr;
+  source.clear();
+  EQCoordinateSource *found = nullptr;
+  Fix *found_fix = nullptr;
   int nsources = 0;
   std::string names;
   for (int i = 0; i < modify->nfix; i++) {
     auto *s = dynamic_cast<EQCoordinateSource *>(modify->fix[i]);
     if (!s) continue;
-    if (!source) source = s;
-    names += (nsources++ ? ", " : "") + std::string(s->source_name());
+    if (!found) {
+      found = s;
+      found_fix = modify->fix[i];
+    }
+    names += (nsources++ ? ", " : "") + std::string(s->eq_name());
   }
   if (nsources == 0)
     error->all(FLERR, "Pair style eq/elastic needs a fix eq/contacts (the contacts and their "
@@ -325,19 +337,26 @@ void PairEQElastic::init_style()
   if (nsources > 1)
     error->all(FLERR, "Pair style eq/elastic found {} fixes with coordinates ({}); allowed: "
                       "exactly one fix eq/contacts, eq/substrate or eq/meso", nsources, names);
-  idir = source->source_dir();
-  sgroupbit = source->source_groupbit();
-  site_distance = source->source_site_distance();
+  source.set(found, found_fix);
+  source_label = found->eq_name();
+  idir = found->source_dir();
+  site_distance = found->source_site_distance();
 
   anisotropic = 0;
   for (const auto &k : kernels)
     if (k.anisotropic()) anisotropic = 1;
 
   EQCompat::request_full_list(neighbor, this, instance_me);
+  ncoeff_init = ncoeff;
   // every run or minimize sets up afresh (its setup may sort or migrate
   // the atoms): the field is recomputed at its first update
-  valid = 0;
-  ready = 0;
+  key_set = false;
+  eval_computed = -1;
+}
+
+int PairEQElastic::field_source_instance() const
+{
+  return source.instance();
 }
 
 /* ----------------------------------------------------------------------
@@ -362,7 +381,7 @@ double PairEQElastic::init_one(int i, int j)
     if (kidx[i][j] >= 0 && mixed[i][j]) kernels[kidx[i][j]] = feq::make_crossover(f, l);
     else {
       kernels.push_back(feq::make_crossover(f, l));
-      kidx[i][j] = (int) kernels.size() - 1;
+      kidx[i][j] = static_cast<int>(kernels.size()) - 1;
       mixed[i][j] = 1;
     }
     ftilde[i][j] = f;
@@ -396,6 +415,112 @@ inline double PairEQElastic::kval(int itype, int jtype, double rsq, const double
 }
 
 /* ----------------------------------------------------------------------
+   The one validity rule of the field.  h, K, the moments, the cached
+   pairs and the ghosts' q and w belong to the key they were computed for
+   (the source, the last neighbor list build, the numbers of local and
+   ghost atoms, the box): any change of it (a run's setup, a list build,
+   change_box, fix deform, box flips, atoms created, deleted, sorted,
+   migrated or displaced, read_data, read_restart, new coefficients,
+   another source) recomputes them all from the source's coordinates,
+   once per force evaluation of the source.  Within a key the field
+   follows the source's counters: a new evaluation (the positions moved)
+   and new versions (changes at fixed positions).
+------------------------------------------------------------------------- */
+
+bool PairEQElastic::Key::operator==(const Key &o) const
+{
+  if (source != o.source || lastcall != o.lastcall || nlocal != o.nlocal || nghost != o.nghost)
+    return false;
+  for (int k = 0; k < 9; k++)
+    if (box[k] != o.box[k]) return false;
+  return true;
+}
+
+PairEQElastic::Key PairEQElastic::key_now() const
+{
+  Key k;
+  k.source = source.instance();
+  k.lastcall = neighbor->lastcall;
+  k.nlocal = atom->nlocal;
+  k.nghost = atom->nghost;
+  for (int d = 0; d < 3; d++) {
+    k.box[d] = domain->boxlo[d];
+    k.box[3 + d] = domain->prd[d];
+  }
+  k.box[6] = domain->xy;
+  k.box[7] = domain->xz;
+  k.box[8] = domain->yz;
+  return k;
+}
+
+// the source found at init, if it is still defined (else an error naming it)
+EQCoordinateSource *PairEQElastic::live_source()
+{
+  EQCoordinateSource *s = EQLink::live_fix(source, modify);
+  if (s) return s;
+  if (!source)
+    error->all(FLERR, "Pair style eq/elastic was not set up for this force evaluation (a "
+                      "pair_style command during a run, e.g. in run N pre no every M: use pre yes)");
+  error->all(FLERR, "Pair style eq/elastic: {}, the coordinate source found at the start of the "
+                    "run, was removed or replaced during the run (e.g. unfix in run N pre no every "
+                    "M); the field cannot go on without it: use pre yes, or define the fix anew "
+                    "between runs", source_label);
+  return nullptr;
+}
+
+void PairEQElastic::refresh()
+{
+  EQCoordinateSource *src = live_source();
+  if (ncoeff != ncoeff_init)
+    error->all(FLERR, "Pair style eq/elastic: pair_coeff during a run (run N pre no every M) is not "
+                      "supported: the kernels are set up when a run starts; use pre yes");
+  grow();
+  const bigint eval = src->source_evaluation();
+  const bigint version = src->source_version();
+  const Key now = key_now();
+  const bool built = neighbor->ago == 0 && eval != eval_built;
+  if (!key_set || built || !(now == key)) {
+    if (key_set && !built && now.lastcall == key.lastcall &&
+        (now.nlocal != key.nlocal || now.nghost != key.nghost))
+      error->all(FLERR, "Pair style eq/elastic: the atoms changed ({} local and {} ghost atoms, "
+                        "{} and {} at the last neighbor list build) without a new neighbor list "
+                        "(a command during a run with pre no?): use pre yes",
+                 now.nlocal, now.nghost, key.nlocal, key.nghost);
+    key = now;
+    key_set = true;
+    eval_built = eval_seen = eval;
+    version_seen = version;
+    ++n_update;
+    ++n_rebuild;
+    recompute(src);
+    return;
+  }
+  if (eval != eval_seen) {    // the positions may have moved
+    eval_seen = eval;
+    version_seen = version;
+    ++n_update;
+    if (check_every > 0 && n_update % check_every == 0) drift_check(src);
+    else follow(src);
+    return;
+  }
+  if (version != version_seen) {    // changes at fixed positions
+    EQChangeSet set;
+    const bool one_set = src->source_changes(version_seen, set);
+    version_seen = version;
+    if (one_set) scatter(set);
+    else recompute(src);    // the set of coupled atoms changed
+  }
+}
+
+// everything from the source's coordinates (ghosts from their owners)
+void PairEQElastic::recompute(EQCoordinateSource *src)
+{
+  memcpy(q, src->source_coordinates(), atom->nlocal * sizeof(double));
+  pending = 0;
+  rebuild(true);
+}
+
+/* ----------------------------------------------------------------------
    owners' coordinates to their ghosts; w = x - q along dir for all atoms
 ------------------------------------------------------------------------- */
 
@@ -406,31 +531,7 @@ void PairEQElastic::sync_ghosts()
   double **x = atom->x;
   const int nall = atom->nlocal + atom->nghost;
   for (int i = 0; i < nall; i++) w[i] = x[i][idir] - q[i];
-  ghosts_current = 1;
-  box_now(wbox);
-}
-
-// the box lengths and tilts: the periodic shifts of the ghosts
-void PairEQElastic::box_now(double *box) const
-{
-  box[0] = domain->xprd;
-  box[1] = domain->yprd;
-  box[2] = domain->zprd;
-  box[3] = domain->xy;
-  box[4] = domain->xz;
-  box[5] = domain->yz;
-}
-
-// q = x - w holds only while the periodic shifts of the ghosts (and the
-// images of the local atoms) are those of the box w was set in (fix
-// deform, change_box between runs with run pre no)
-bool PairEQElastic::box_changed() const
-{
-  double box[6];
-  box_now(box);
-  for (int k = 0; k < 6; k++)
-    if (box[k] != wbox[k]) return true;
-  return false;
+  ghost_version = version_seen;
 }
 
 /* ----------------------------------------------------------------------
@@ -468,22 +569,21 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  first.assign(2 * (size_t) nlocal, 0);
+  first.assign(2 * static_cast<size_t>(nlocal), 0);
   pj.clear();
   pk.clear();
   for (int i = 0; i < nlocal; i++) {
     h[i] = ksum[i] = 0.0;
     mom[i][0] = mom[i][1] = mom[i][2] = 0.0;
   }
-  double vir[3] = {0.0, 0.0, 0.0};
   double dubig = 0.0;
   int ibig = -1, jbig = -1;
   for (int ii = 0; ii < inum; ii++) {
     const int i = ilist[ii];
-    first[2 * i] = (int) pj.size();
+    first[2 * i] = static_cast<int>(pj.size());
     const double qi = q[i];
     if (std::isnan(qi)) {
-      first[2 * i + 1] = (int) pj.size();
+      first[2 * i + 1] = static_cast<int>(pj.size());
       continue;
     }
     const int itype = type[i];
@@ -506,6 +606,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
       if (site_distance) del[d] -= qi - qj;
       const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
       if (rsq > cutsq_in[itype][jtype]) continue;
+      if (!(rsq > 0.0)) overlap_error(i, j);
       const double k = factor * kval(itype, jtype, rsq, del);
       pj.push_back(j);
       pk.push_back(k);
@@ -526,23 +627,35 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
     mom[i][0] = m0;
     mom[i][1] = m1;
     mom[i][2] = m2;
-    first[2 * i + 1] = (int) pj.size();
+    first[2 * i + 1] = static_cast<int>(pj.size());
   }
   // the coupled ghosts of the lists in the order of their index (a
   // sequential pass over the ghosts' arrays at every update)
   if (fresh_ghosts)
     for (int i = nlocal; i < nall; i++)
       if (gmark[i - nlocal]) glist.push_back(i);
-  // virial (1/2) sum_j del_a f_j along dir, f = -k (q_i - q_j): from the
-  // pairs again (the moments alone do not give it)
+  ++nfield;
+  virial_now();
+  // blocks: a coupled pair stays in the list while the displacements of
+  // its blocks differ by less than the skin (see site_field())
+  if (site_distance && dubig > 0.5 * neighbor->skin) skin_error(ibig, jbig, dubig);
+}
+
+// this rank's share of the virial, (1/2) sum_j del_a f_j along dir with
+// f = -k (q_i - q_j), from the pairs (the moments alone do not give it)
+void PairEQElastic::virial_now()
+{
+  double **x = atom->x;
+  const int nlocal = atom->nlocal;
+  double vir[3] = {0.0, 0.0, 0.0};
   for (int i = 0; i < nlocal; i++) {
     const double qi = q[i];
     if (std::isnan(qi)) continue;
     for (int m = first[2 * i]; m < first[2 * i + 1]; m++) {
       const int j = pj[m];
-      const double fd = -pk[m] * (qi - q[j]);
+      const double dq = qi - q[j], fd = -pk[m] * dq;
       double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-      if (site_distance) del[d] -= qi - q[j];
+      if (site_distance) del[idir] -= dq;
       vir[0] += 0.5 * del[0] * fd;
       vir[1] += 0.5 * del[1] * fd;
       vir[2] += 0.5 * del[2] * fd;
@@ -551,11 +664,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
   wvir[0] = vir[0];
   wvir[1] = vir[1];
   wvir[2] = vir[2];
-  vir_valid = 1;
-  valid = 1;
-  // blocks: a coupled pair stays in the list while the displacements of
-  // its blocks differ by less than the skin (see site_field())
-  if (site_distance && dubig > 0.5 * neighbor->skin) skin_error(ibig, jbig, dubig);
+  vir_at = nfield;
 }
 
 void PairEQElastic::skin_error(int i, int j, double du)
@@ -569,33 +678,44 @@ void PairEQElastic::skin_error(int i, int j, double du)
              atom->tag[i], atom->tag[j], du, neighbor->skin);
 }
 
+void PairEQElastic::overlap_error(int i, int j)
+{
+  error->one(FLERR,
+             "Pair eq/elastic: atoms {} and {} of {} are at the same {} (r = 0, where the kernel "
+             "k(r) diverges): two {} at one place; check the positions (e.g. change_box ... remap "
+             "with fix move, which puts its atoms back at the positions it stored)",
+             atom->tag[i], atom->tag[j], source_label, site_distance ? "site" : "position",
+             site_distance ? "blocks" : "contacts");
+}
+
 /* ----------------------------------------------------------------------
-   the source's coordinates at the current positions (see the top of the
-   file).  Every decision that leads to communication depends only on
-   what all ranks share (the list build, the update count, full).
+   the positions may have moved since the last update (a new evaluation
+   of the source).  Blocks: q = x - w, h over the cached pairs, computed
+   with the forces in compute() (or when asked for).  Contacts: the
+   source's stretches; when every coupled atom this rank holds moved by the
+   same distance along dir, h, K and the virial hold (a rigid slider: no
+   pair work), else the field is recomputed over the cached pairs with
+   k_ij at the new distances.  Every decision that leads to communication
+   depends only on what all ranks share.  count: in the report's counts
+   (not for a drift check, counted as such)
 ------------------------------------------------------------------------- */
 
-void PairEQElastic::field_update(const double *qin, bool full)
+void PairEQElastic::follow(EQCoordinateSource *src, bool count)
 {
-  grow();
-  ++n_update;
-  ready = 1;
-  pending = 0;
+  if (site_distance) {
+    pending = 1;
+    ++nfield;
+    if (count) ++n_advance;
+    return;
+  }
+  const double *qin = src->source_coordinates();
   double **x = atom->x;
   const int nlocal = atom->nlocal;
   const int d = idir;
 
-  if (full || !valid || neighbor->ago == 0 || box_changed()) {
-    advanced = 0;
-    memcpy(q, qin, nlocal * sizeof(double));
-    rebuild(true);
-    ++n_rebuild;
-    return;
-  }
-
   // displacements along dir since the last update of every coupled atom
-  // this rank holds; the set of coupled atoms changes only at list builds
-  // or with `full`
+  // this rank holds; the set of coupled atoms changes only with the key or
+  // a new version that is not a change set
   double dmin = HUGE_VAL, dmax = -HUGE_VAL, xmax = 0.0;
   int changed = -1;
   for (int i = 0; i < nlocal; i++) {
@@ -617,12 +737,12 @@ void PairEQElastic::field_update(const double *qin, bool full)
   if (changed >= 0 && !std::isfinite(x[changed][d]))    // a NaN stretch looks uncoupled
     error->one(FLERR, "Pair eq/elastic: position of atom {} of {} is {} (numerical instability: "
                       "check the timestep, the forces and the integrator)",
-               atom->tag[changed], source->source_name(), x[changed][d]);
+               atom->tag[changed], source_label, x[changed][d]);
   if (changed >= 0)
     error->one(FLERR, "Pair eq/elastic: atom {} of {} became {} between two neighbor list builds "
-                      "without notice (internal error)", atom->tag[changed], source->source_name(),
+                      "without notice (internal error)", atom->tag[changed], source_label,
                std::isnan(qin[changed]) ? "uncoupled" : "coupled");
-  if (!ghosts_current) sync_ghosts();    // after breaks: the owners' new coordinates
+  if (ghost_version != version_seen) sync_ghosts();    // after breaks: the owners' new coordinates
   // only the coupled ghosts of the lists enter h (and can become partners
   // before the next list build): a box with many ghosts beyond the cutoff
   // (periodic images in a thin dimension) costs nothing per update
@@ -639,40 +759,12 @@ void PairEQElastic::field_update(const double *qin, bool full)
 
   const double eps = std::numeric_limits<double>::epsilon();
   const double tol = UNIFORM_ULPS * eps * (xmax + std::fmax(std::fabs(dmin), std::fabs(dmax)));
-  // after field_advance the positions xq are older than h: no shortcut
-  const bool after_advance = advanced;
-  advanced = 0;
-  if (!after_advance && !(dmax - dmin > tol)) {
-    ++n_uniform;    // a rigid translation: h, K and the virial hold
+  if (!(dmax - dmin > tol)) {
+    if (count) ++n_uniform;    // a rigid translation: h, K and the virial hold
   } else {
-    ++n_nonuniform;
-    if (site_distance) site_field(nullptr);
-    else rebuild(false);    // k_ij at the atoms' new distances
+    if (count) ++n_nonuniform;
+    rebuild(false);    // k_ij at the atoms' new distances
   }
-  if (check_every > 0 && n_update % check_every == 0) drift_check();
-}
-
-/* ----------------------------------------------------------------------
-   blocks between two list builds: their sites do not move, so every
-   coordinate is q = x - w along dir (w set at the last update with an
-   array); h over the cached pairs in one pass over the positions.  The
-   same decisions as field_update() (list build, drift check), so that
-   every rank takes the same path.
-------------------------------------------------------------------------- */
-
-bool PairEQElastic::field_advance()
-{
-  if (!site_distance || !valid || !ghosts_current || neighbor->ago == 0 || atom->nmax > nmax ||
-      box_changed())
-    return false;
-  if (check_every > 0 && (n_update + 1) % check_every == 0) return false;
-  ++n_update;
-  ++n_advance;
-  ready = 1;
-  pending = 1;
-  advanced = 1;    // xq are not kept (see field_update)
-  vir_valid = 0;    // the virial follows the field
-  return true;
 }
 
 /* ----------------------------------------------------------------------
@@ -688,7 +780,6 @@ bool PairEQElastic::field_advance()
 void PairEQElastic::site_field(double **f)
 {
   pending = 0;
-  vir_valid = 0;
   const double *const *const x = atom->x;
   const int nlocal = atom->nlocal;
   const int d = idir;
@@ -721,14 +812,17 @@ void PairEQElastic::site_field(double **f)
 }
 
 /* ----------------------------------------------------------------------
-   h from scratch, compared with the incremental one
+   the incremental field of this update, compared with the one computed
+   from scratch (which is kept)
 ------------------------------------------------------------------------- */
 
-void PairEQElastic::drift_check()
+void PairEQElastic::drift_check(EQCoordinateSource *src)
 {
   const int nlocal = atom->nlocal;
+  follow(src, false);    // the incremental field at the current positions
+  if (pending) site_field(nullptr);
   std::vector<double> hold(h, h + nlocal);
-  rebuild(true);
+  recompute(src);
   ++n_check;
   // the scale of h: |h| and the size of its terms, K |q| (rigidly moving
   // atoms have h ~ 0 but terms of K |q| each)
@@ -740,19 +834,21 @@ void PairEQElastic::drift_check()
 }
 
 /* ----------------------------------------------------------------------
-   atoms list[0..n) changed their coordinates by dq at fixed positions:
-   h_i += K_i dq_i and h_j -= k_ij dq_i for all partners j (ghost shares
-   returned to their owners); the virial changes by -dq_i M_i
+   a change set of the source (breaks at fixed positions): h_i += K_i dq_i
+   and h_j -= k_ij dq_i for all partners j (ghost shares returned to their
+   owners); the virial changes by -dq_i M_i
 ------------------------------------------------------------------------- */
 
-void PairEQElastic::field_change(const int *clist, int n, const double *dqv)
+void PairEQElastic::scatter(const EQChangeSet &set)
 {
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
+  if (pending) site_field(nullptr);
+  const bool vir_current = vir_at == nfield;
   memset(dh, 0, nall * sizeof(double));
-  for (int m = 0; m < n; m++) {
-    const int i = clist[m];
-    const double dq = dqv[i];
+  for (int m = 0; m < set.n; m++) {
+    const int i = set.list[m];
+    const double dq = set.dq[i];
     q[i] += dq;
     w[i] -= dq;
     dh[i] += ksum[i] * dq;
@@ -765,8 +861,23 @@ void PairEQElastic::field_change(const int *clist, int n, const double *dqv)
   EQCompat::reverse_comm(comm, this);
   for (int i = 0; i < nlocal; i++)
     if (!std::isnan(q[i])) h[i] += dh[i];
-  ghosts_current = 0;
-  n_change += n;
+  ++nfield;
+  if (vir_current) vir_at = nfield;
+  n_change += set.n;
+}
+
+/* ----------------------------------------------------------------------
+   what the sources read: h and K at the current positions
+------------------------------------------------------------------------- */
+
+EQFieldView PairEQElastic::field_view()
+{
+  refresh();
+  if (pending) site_field(nullptr);
+  EQFieldView v;
+  v.h = h;
+  v.k = ksum;
+  return v;
 }
 
 /* ----------------------------------------------------------------------
@@ -800,20 +911,26 @@ void PairEQElastic::field_report()
 }
 
 /* ----------------------------------------------------------------------
-   forces -h_i along dir; energy and virial from what the field holds
+   forces -h_i along dir; energy and virial from what the field holds.
+   Under pair hybrid the list is the sub-style's: the field couples the
+   type pairs given to eq/elastic only.
 ------------------------------------------------------------------------- */
 
 void PairEQElastic::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  if (!ready)
-    error->all(FLERR, "Pair eq/elastic: the field was not updated by {} before this force "
-                      "evaluation; a command that evaluates forces outside run, minimize or rerun "
-                      "is not supported with this pair style", source ? source->source_name() : "its fix");
-  ready = 0;
+  EQCoordinateSource *src = live_source();
+  // the contacts' stretches are those of the source's last evaluation: a
+  // second force evaluation without one would see old stretches
+  if (!site_distance && key_set && src->source_evaluation() == eval_computed)
+    error->all(FLERR, "Pair eq/elastic: forces evaluated again without a new evaluation of {} (a "
+                      "command that evaluates forces outside run, minimize or rerun is not "
+                      "supported with contacts)", source_label);
+  refresh();
+  eval_computed = src->source_evaluation();
   // after breaks the ghosts hold their owners' coordinates of before: the
   // energy below and single() (compute pair/local) need the new ones
-  if (!ghosts_current) sync_ghosts();
+  if (ghost_version != version_seen) sync_ghosts();
 
   double **f = atom->f;
   const int nlocal = atom->nlocal;
@@ -851,26 +968,7 @@ void PairEQElastic::compute(int eflag, int vflag)
     eng_vdwl += 0.5 * e;
   }
   if (vflag_global) {
-    if (!vir_valid) {
-      double vir[3] = {0.0, 0.0, 0.0};
-      for (int i = 0; i < nlocal; i++) {
-        const double qi = q[i];
-        if (std::isnan(qi)) continue;
-        for (int m = first[2 * i]; m < first[2 * i + 1]; m++) {
-          const int j = pj[m];
-          const double dq = qi - q[j], fd = -pk[m] * dq;
-          double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-          if (site_distance) del[d] -= dq;
-          vir[0] += 0.5 * del[0] * fd;
-          vir[1] += 0.5 * del[1] * fd;
-          vir[2] += 0.5 * del[2] * fd;
-        }
-      }
-      wvir[0] = vir[0];
-      wvir[1] = vir[1];
-      wvir[2] = vir[2];
-      vir_valid = 1;
-    }
+    if (vir_at != nfield) virial_now();
     // LAMMPS' components xx yy zz xy xz yz of del_a f_b for f along dir
     if (d == 0) virial[0] += wvir[0];
     else if (d == 1) {
@@ -885,17 +983,19 @@ void PairEQElastic::compute(int eflag, int vflag)
 }
 
 /* ----------------------------------------------------------------------
-   energy of one pair; the force is not central (it acts along the
-   source's direction), so fforce = 0 and svector = {k_ij, force on i
-   along dir}
+   one pair: its energy (1/2) k_ij (q_i - q_j)^2 and its force on atom i,
+   -k_ij (q_i - q_j) along the source's direction.  The force is not
+   central: fforce is its component along del = x_i - x_j (fforce del is
+   the central part), svector[0..2] the force on i, svector[3..5] the
+   torque on i (0), svector[6] = k_ij
 ------------------------------------------------------------------------- */
 
 double PairEQElastic::single(int i, int j, int itype, int jtype, double rsq,
                              double /*factor_coul*/, double factor_lj, double &fforce)
 {
   fforce = 0.0;
-  svector[0] = svector[1] = 0.0;
-  if (!source || !q || i >= nmax || j >= nmax) return 0.0;
+  for (int k = 0; k < single_extra; k++) svector[k] = 0.0;
+  if (!key_set || i >= nmax || j >= nmax) return 0.0;
   // ghosts: q = x - w (current for all ghosts after compute(); the field
   // keeps q itself current only for the ghosts of its lists)
   double **x = atom->x;
@@ -903,15 +1003,18 @@ double PairEQElastic::single(int i, int j, int itype, int jtype, double rsq,
   const double qi = i < nlocal ? q[i] : x[i][idir] - w[i];
   const double qj = j < nlocal ? q[j] : x[j][idir] - w[j];
   if (std::isnan(qi) || std::isnan(qj)) return 0.0;
-  if (rsq > cutsq_in[itype][jtype]) return 0.0;
-  double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+  if (atom->tag[i] == atom->tag[j] || rsq > cutsq_in[itype][jtype]) return 0.0;
+  const double delx[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+  double del[3] = {delx[0], delx[1], delx[2]};
   if (site_distance) del[idir] -= qi - qj;
-  rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
-  if (rsq > cutsq_in[itype][jtype]) return 0.0;
-  const double k = factor_lj * kval(itype, jtype, rsq, del);
+  const double rsq_k = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
+  if (rsq_k > cutsq_in[itype][jtype] || !(rsq_k > 0.0)) return 0.0;
+  const double k = factor_lj * kval(itype, jtype, rsq_k, del);
   const double dq = qi - qj;
-  svector[0] = k;
-  svector[1] = -k * dq;
+  const double fi = -k * dq;
+  if (rsq > 0.0) fforce = fi * delx[idir] / rsq;
+  svector[idir] = fi;
+  svector[6] = k;
   return 0.5 * k * dq * dq;
 }
 

@@ -25,6 +25,7 @@ PairStyle(eq/elastic,PairEQElastic);
 #include "eq_field.h"
 #include "eq_kernel.h"
 
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -52,44 +53,42 @@ class PairEQElastic : public Pair, public EQElasticField {
   double memory_usage() override;
 
   // EQElasticField
-  const EQCoordinateSource *field_source() const override { return source; }
-  void field_update(const double *q, bool full) override;
-  bool field_advance() override;
-  void field_change(const int *list, int n, const double *dq) override;
-  const double *field_h() override
-  {
-    if (pending) site_field(nullptr);
-    return h;
-  }
-  const double *field_k() const override { return ksum; }
+  const char *eq_name() const override { return "pair_style eq/elastic"; }
+  int eq_instance() const override { return instance_me; }
+  int field_source_instance() const override;
+  EQFieldView field_view() override;
   void field_report() override;
 
  protected:
   double cut_global;
-  int check_every;             // drift check every this many uniform updates (0: never)
+  int check_every;             // drift check every this many updates (0: never)
   double **cut, **cutsq_in;    // cutoffs; squared with a 1e-12 relative margin
   double **ftilde, **lambda;   // crossover coefficients (for extract)
   int **kidx;                  // kernel of a type pair (index into kernels)
   int **mixed;                 // 1: the kernel of a type pair was mixed by init_one
   std::vector<feq::Kernel> kernels;
   int anisotropic;
+  bigint ncoeff;               // pair_coeff commands so far
+  bigint ncoeff_init;          // ... at the last init_style()
 
-  const EQCoordinateSource *source;
-  int idir, sgroupbit;
+  // the coordinate source of this run (found by init_style)
+  EQHeld<EQCoordinateSource> source;
+  std::string source_label;    // its name, for messages after it is gone
+  int idir;
   bool site_distance;
 
-  // per-atom arrays (local and ghost unless noted), valid between two
-  // neighbor list builds: q the coordinates; xq the positions along dir
-  // at the last update; w = x - q along dir at the last synchronization
-  // of the ghosts (for ghosts: q = x - w while no coordinate changes at
-  // fixed positions); h, ksum, mom (local) the field, K_i, and the first
-  // moments M_i,a = sum_j k_ij del_ij,a of the virial; dh scattered changes
+  // per-atom arrays (local and ghost unless noted), valid for the key
+  // below: q the coordinates; xq the positions along dir at the last
+  // update; w = x - q along dir (constant while the coordinates change
+  // only by the motion of the atoms); h, ksum, mom (local) the field,
+  // K_i, and the first moments M_i,a = sum_j k_ij del_ij,a of the
+  // virial; dh scattered changes
   int nmax;
   double *q, *xq, *w, *h, *ksum, *dh;
   double (*mom)[3];
 
   // coupled pairs of the current neighbor list: atom i's partners are
-  // pj[first[i] .. first[i+1]) with k_ij pk (special factor included)
+  // pj[first[2i] .. first[2i+1]) with k_ij pk (special factor included)
   std::vector<int> first, pj;
   std::vector<double> pk;
   // the coupled ghosts in the lists of local coupled atoms (the only ghosts
@@ -97,14 +96,27 @@ class PairEQElastic : public Pair, public EQElasticField {
   std::vector<int> glist;
   std::vector<char> gmark;
 
-  int valid;             // arrays and pairs match the current list and atoms
-  int ghosts_current;    // ghost q equal their owners' q
-  int ready;             // field_update since the last compute()
-  int pending;           // field_advance: h to be computed (with the forces)
-  int advanced;          // field_advance since the last field_update (xq not kept)
-  double wbox[6];        // box (prd, tilts) when w was set: the ghosts' shifts
-  int vir_valid;         // wvir holds this rank's share of the virial
-  double wvir[3];        // sum over local i of (1/2) sum_j del_ij,a f_ij (f along dir)
+  // The validity of the field (h, K, the moments, the cached pairs, q, w):
+  // the key it was computed for.  Any change of it recomputes everything
+  // from the source's coordinates (see valid_for() and the doc page).
+  struct Key {
+    int source;          // instance of the source
+    bigint lastcall;     // step of the last neighbor list build
+    int nlocal, nghost;
+    double box[9];       // boxlo, prd, tilts: the ghosts' periodic shifts
+    bool operator==(const Key &o) const;
+  };
+  Key key;
+  bool key_set;         // the field was computed for `key`
+  // within a key, what of the source the field has followed: its force
+  // evaluation (positions), its version (changes at fixed positions), the
+  // version the ghosts' q and w hold, and the evaluation of the last
+  // compute(); the evaluation the field was recomputed in after a build
+  bigint eval_seen, version_seen, ghost_version, eval_computed, eval_built;
+  int pending;          // blocks: h to be computed from q = x - w (with the forces)
+  bigint nfield;        // changes of h so far
+  bigint vir_at;        // nfield when wvir was computed (-1: never)
+  double wvir[3];       // sum over local i of (1/2) sum_j del_ij,a f_ij (f along dir)
   int comm_mode;
 
   // what the updates cost and how far the incremental field drifted
@@ -113,13 +125,19 @@ class PairEQElastic : public Pair, public EQElasticField {
 
   void allocate();
   void grow();
+  EQCoordinateSource *live_source();
+  Key key_now() const;
+  void refresh();
+  void recompute(EQCoordinateSource *src);
+  void follow(EQCoordinateSource *src, bool count = true);
+  void scatter(const EQChangeSet &set);
   void sync_ghosts();
-  void box_now(double *box) const;
-  bool box_changed() const;
   void rebuild(bool fresh_ghosts);
   void site_field(double **f);
-  void drift_check();
+  void drift_check(EQCoordinateSource *src);
+  void virial_now();
   void skin_error(int i, int j, double du);
+  void overlap_error(int i, int j);
   double kval(int itype, int jtype, double rsq, const double *del) const;
 };
 

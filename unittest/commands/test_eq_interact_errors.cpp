@@ -225,14 +225,14 @@ TEST_F(EQInteractErrors, Quasistatic)
   BEGIN_HIDE_OUTPUT();
   command("fix q all eq/quasistatic nothere");
   END_HIDE_OUTPUT();
-  TEST_FAILURE(".*ERROR: Fix eq/quasistatic: fix ID nothere does not exist; expected the ID of a "
-               "fix eq/contacts.*",
+  TEST_FAILURE(".*ERROR: Fix q eq/quasistatic: fix ID nothere does not exist; expected the ID of "
+               "a fix eq/contacts.*",
                command("run 1 post no"););
   BEGIN_HIDE_OUTPUT();
   command("unfix q");
   command("fix q all eq/quasistatic m");
   END_HIDE_OUTPUT();
-  TEST_FAILURE(".*ERROR: Fix eq/quasistatic: fix m is a fix nve, not eq/contacts.*",
+  TEST_FAILURE(".*ERROR: Fix q eq/quasistatic: fix m is a fix nve, not eq/contacts.*",
                command("run 1 post no"););
   // the slider must carry every contact
   BEGIN_HIDE_OUTPUT();

@@ -82,7 +82,7 @@ TEST_F(EQSubstrateErrors, Arguments)
                fix("1.0 smooth one"););
   TEST_FAILURE(".*ERROR: Fix eq/substrate sawtooth uc: missing value.*", fix("1.0 sawtooth"););
   TEST_FAILURE(".*ERROR: Fix eq/substrate unknown keyword 'speed'; allowed: dir, drive, stage, "
-               "reverse, crossing, disorder.*",
+               "reverse, crossing, integrator, disorder.*",
                fix("1.0 sawtooth 1.0 speed 1"););
   TEST_FAILURE(".*ERROR: Fix eq/substrate dir: unknown value 'w'; allowed: x, y, z.*",
                fix("1.0 sawtooth 1.0 dir w"););

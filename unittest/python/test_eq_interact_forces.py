@@ -85,16 +85,20 @@ def test_pair_against_numpy(tmp_path, case):
     # (LAMMPS' xy entry is sum del_x f_y; for dir x it is sum del_x f_y = 0)
     assert abs(pxx - w["xx"] / area) < 1e-10 and abs(pyy - w["yy"] / area) < 1e-10
     assert abs(pxy - (0.5 * np.sum(dx * fpair) / area if d == 1 else 0.0)) < 1e-10
-    # single(): compute pair/local, p1 = k_ij, p2 = force on i along dir
+    # single(): compute pair/local; columns index dist eng force p1 p2 p3
+    # p7: p1..p3 the force on i (along dir only), p7 = k_ij, force = the
+    # force on i projected on the pair vector (|force| <= |f|)
     pl = np.array([[float(v) for v in l.split()] for l in
                    (tmp_path / "pairs.dump").read_text().split("ITEM: ENTRIES")[1].strip().splitlines()[1:]])
     assert len(pl) > n
     e_pairs = pl[:, 2]
     assert abs(np.sum(e_pairs) - e_ref) < 1e-10 * max(1.0, e_ref)
     assert np.all(pl[:, 1] <= rcut * (1 + 1e-9))
-    assert np.allclose(pl[:, 2], 0.5 * pl[:, 3] * (pl[:, 4] / np.where(pl[:, 3] > 0, pl[:, 3], 1)) ** 2,
+    f_dir, f_other, kp = pl[:, 4 + d], pl[:, 5 - d], pl[:, 7]
+    assert np.all(f_other == 0.0) and np.all(pl[:, 6] == 0.0)
+    assert np.allclose(e_pairs, 0.5 * kp * (f_dir / np.where(kp > 0, kp, 1)) ** 2,
                        rtol=1e-9, atol=1e-14)
-
+    assert np.all(np.abs(pl[:, 3]) <= np.abs(f_dir) * (1 + 1e-12))
 
 def frames(path, tag):
     """{step: (box lengths, rows)} of a LAMMPS dump (atoms or local)."""
