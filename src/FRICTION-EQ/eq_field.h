@@ -23,11 +23,12 @@
      eq/contacts), which reads the driver's breaking tolerance in its own
      init().
 
-   Partners are found afresh in every init() (EQLink, eq_lammps_util.h):
-   a style keeps the partner's address and Fix/Pair instance number for
-   one run only, and checks both before each use, so that a partner
-   removed or replaced during a run (run N pre no every M "unfix ...")
-   ends in an error naming both styles, never in a dangling access.
+   Partners are found afresh in every init() (eq_link.h): a style holds a
+   partner's address and Fix/Pair instance number for that run (and the
+   parts of it that follow without init: run N pre no every M), and finds
+   the partner again and compares both before each use, so that a partner
+   removed or replaced meanwhile ends in an error naming both styles,
+   never in a dangling access.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_EQ_FIELD_H

@@ -18,6 +18,7 @@
 #include "eq_distribution.h"
 #include "eq_lammps_util.h"
 #include "eq_link.h"
+#include "eq_record_lammps.h"
 
 #include <cmath>
 #include <cstring>
@@ -147,11 +148,12 @@ void FixEQBlocks::pre_force_respa(int /*vflag*/, int /*ilevel*/, int /*iloop*/)
   ++nevaluation;
 }
 
-// the field reports on its run; the link ends with the run
+// the field reports on its run (or on this part of it: run N every M).
+// The link stays for the parts of a run that follow without a new init()
+// (pre no); it is checked before each use and found afresh in init()
 void FixEQBlocks::post_run()
 {
   if (EQElasticField *f = EQLink::live_pair(field, force)) f->field_report();
-  field.clear();
 }
 
 /* ----------------------------------------------------------------------
@@ -195,17 +197,15 @@ int FixEQBlocks::modify_velocity(int narg, char **arg)
 /* ----------------------------------------------------------------------
    global restart: the stage (position now, velocity now, i.e. including a
    change by fix_modify velocity) so that a restarted run continues the
-   driving protocol, and whether the writing fix had a stage at all
+   driving protocol, whether the writing fix had a stage at all, and the
+   signature of what the stored blocks were made with (shaping, set by the
+   derived fix): a re-specified fix with another of these stops with an
+   error naming it
 ------------------------------------------------------------------------- */
 
 void FixEQBlocks::write_restart(FILE *fp)
 {
-  const double list[3] = {stage, vstage, (double) drive_flag};
-  if (comm->me == 0) {
-    int size = 3 * sizeof(double);
-    fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 3, fp);
-  }
+  EQRecord::write(lmp, fp, {stage, vstage, static_cast<double>(drive_flag)}, shaping);
 }
 
 // the stage position and velocity of the file replace the command's stage
@@ -213,7 +213,7 @@ void FixEQBlocks::write_restart(FILE *fp)
 // springs; the stiffness K is always the command's
 void FixEQBlocks::restart(char *buf)
 {
-  const double *list = reinterpret_cast<const double *>(buf);
+  const std::vector<double> list = EQRecord::read(lmp, this, buf, 3, shaping, "blocks");
   const bool file_drive = list[2] != 0.0;
   if (!drive_flag) {
     if (file_drive && comm->me == 0)

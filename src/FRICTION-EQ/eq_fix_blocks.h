@@ -19,6 +19,7 @@
 
 #include "eq_field.h"
 #include "eq_fix_peratom.h"
+#include "eq_record.h"
 
 #include <functional>
 #include <string>
@@ -55,6 +56,7 @@ class FixEQBlocks : public FixEQPerAtom, public EQCoordinateSource {
 
  protected:
   std::string name;    // "fix ID style"
+  feq::Signature shaping;    // the arguments the stored blocks depend on (set by the derived fix)
   int idir;
   int sitecol;         // column of the site in the per-atom state
   int flagcol;         // a column that is 0 until the block is set up

@@ -9,7 +9,8 @@
    the style finds it again and compares both: a partner removed or
    replaced meanwhile (run N pre no every M "unfix ..."), even one whose
    successor got the same address, is told apart and named in an error
-   instead of being accessed.  At the end of a run the link is dropped.
+   instead of being accessed.  Nothing of a held partner is read without
+   that check; the next init() finds the partners afresh.
    Include from .cpp files only.
 ------------------------------------------------------------------------- */
 

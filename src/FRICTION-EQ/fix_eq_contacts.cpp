@@ -28,6 +28,7 @@
 #include "eq_contact.h"
 #include "eq_lammps_util.h"
 #include "eq_link.h"
+#include "eq_record_lammps.h"
 
 #include <algorithm>
 #include <cmath>
@@ -197,11 +198,29 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Fix eq/contacts: group {} has no atoms", group->names[igroup]);
 
   try {
-    model.reset(new ContactModel(kc, (uint64_t) seed, threshold, reform, stiffness, exact != 0,
-                                 reform_force != 0, start_reform != 0));
+    model.reset(new ContactModel(kc, static_cast<uint64_t>(seed), threshold, reform, stiffness,
+                                 exact != 0, reform_force != 0, start_reform != 0));
   } catch (const feq::SpecError &e) {
     error->all(FLERR, "Fix eq/contacts {}", e.what());
   }
+  // the largest contact force k x_s and energy k x_s^2/2 must be finite
+  {
+    const double kmax = kc * stiffness.dist->effective_upper();
+    const double xmax = threshold.dist->effective_upper();
+    constexpr double EMAX = 1e300;
+    if (!(kmax * xmax <= EMAX) || !(0.5 * kmax * xmax * xmax <= EMAX))
+      error->all(FLERR, "Fix eq/contacts: kc = {} with stiffness {} (k up to {:.6g}) and "
+                        "threshold {} (x_s up to {:.6g}) would overflow the contacts' forces or "
+                        "energies (k x_s and k x_s^2/2 must stay <= {:g}): lower kc, the "
+                        "stiffness or the thresholds", kc, stiffness.text, kmax, threshold.text,
+                 xmax, EMAX);
+  }
+  // what the stored contacts are made with (restart check)
+  shaping.add("kc", EQRecord::number(kc));
+  shaping.add("threshold", EQRecord::distribution(threshold));
+  shaping.add("reform", EQRecord::distribution(reform));
+  shaping.add("stiffness", EQRecord::distribution(stiffness));
+  shaping.add("dir", std::string(1, "xyz"[idir]));
 
   if (comm->me == 0)
     utils::logmesg(lmp,
@@ -410,11 +429,12 @@ void FixEQContacts::min_post_force(int /*vflag*/)
   else apply(false);
 }
 
-// the field reports on its run; the link ends with the run
+// the field reports on its run (or on this part of it: run N every M).
+// The link stays for the parts of a run that follow without a new init()
+// (pre no); it is checked before each use and found afresh in init()
 void FixEQContacts::post_run()
 {
   if (EQElasticField *f = EQLink::live_pair(field, force)) f->field_report();
-  field.clear();
 }
 
 /* ----------------------------------------------------------------------
@@ -697,31 +717,30 @@ double FixEQContacts::compute_vector(int n)
 }
 
 /* ----------------------------------------------------------------------
-   global restart: total breaks and the seed
+   global restart: total breaks and the seed, and the signature of what
+   the stored contacts were made with (kc, threshold, reform, stiffness,
+   dir): a fix re-specified with another of these stops with an error
+   naming it; another seed only warns (the breaks go on with new draws)
 ------------------------------------------------------------------------- */
 
 void FixEQContacts::write_restart(FILE *fp)
 {
   bigint all = 0;
   MPI_Allreduce(&local_breaks_total, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  double list[2] = {(double) (all + breaks_offset), (double) seed};
-  if (comm->me == 0) {
-    int size = 2 * sizeof(double);
-    fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 2, fp);
-  }
+  EQRecord::write(lmp, fp, {static_cast<double>(all + breaks_offset), static_cast<double>(seed)},
+                  shaping);
 }
 
 void FixEQContacts::restart(char *buf)
 {
-  const double *list = (const double *) buf;
-  breaks_offset = (bigint) list[0];
+  const std::vector<double> list = EQRecord::read(lmp, this, buf, 2, shaping, "contacts");
+  breaks_offset = static_cast<bigint>(list[0]);
   local_breaks_total = 0;
-  if ((bigint) list[1] != seed && comm->me == 0)
+  if (static_cast<bigint>(list[1]) != seed && comm->me == 0)
     error->warning(FLERR,
                    "Fix eq/contacts: seed {} differs from the restart file's seed {}; the break "
                    "sequence does not continue that of the original run",
-                   seed, (bigint) list[1]);
+                   seed, static_cast<bigint>(list[1]));
 }
 
 /* ---------------------------------------------------------------------- */

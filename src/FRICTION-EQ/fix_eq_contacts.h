@@ -23,6 +23,7 @@ FixStyle(eq/contacts,FixEQContacts);
 
 #include "eq_field.h"
 #include "eq_fix_peratom.h"
+#include "eq_record.h"
 
 #include <memory>
 #include <string>
@@ -74,6 +75,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
 
  private:
   std::unique_ptr<feq::ContactModel> model;
+  feq::Signature shaping;    // the arguments the stored contacts depend on
   std::string name;    // "fix ID eq/contacts"
   bigint seed;
   int idir;            // sliding direction 0,1,2

@@ -29,6 +29,7 @@
 #include "eq_distribution.h"
 #include "eq_lammps_compat.h"
 #include "eq_lammps_util.h"
+#include "eq_record_lammps.h"
 #include "eq_meso.h"
 
 #include <algorithm>
@@ -155,16 +156,33 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
     if (!have_threshold)
       throw feq::SpecError(std::string(": the threshold keyword is required; allowed styles: ") +
                            feq::role_styles(feq::Role::THRESHOLD));
-    if (du == 0.0) du = GRID_DEFAULT_SD * std::sqrt(threshold.dist->variance());
-    model.reset(new feq::MesoModel(threshold.dist, reform.dist, du, crossing, start));
-    // what the per-block state depends on, as a 52-bit FNV-1a hash (exact
-    // in a double) for the restart file
-    const std::string sig = fmt::format("{}|{}|{:.17g}|{}|{}", threshold.text, reform.text, du,
-                                        crossing == feq::Crossing::EXACT ? "exact" : "step",
-                                        start == feq::MEStart::RELAXED ? "relaxed" : "reform");
-    uint64_t hsh = 1469598103934665603ULL;
-    for (const unsigned char c : sig) hsh = (hsh ^ c) * 1099511628211ULL;
-    signature = (double) (hsh & ((1ULL << 52) - 1));
+    // the default grid: 1/8 of the thresholds' standard deviation; a grid
+    // the user did not set is not named as the cause when it fails
+    const bool grid_default = du == 0.0;
+    const double sd = std::sqrt(std::max(0.0, threshold.dist->variance()));
+    if (grid_default) du = GRID_DEFAULT_SD * sd;
+    try {
+      if (grid_default && !(du > 0.0))
+        throw feq::SpecError("grid: zero width");
+      model.reset(new feq::MesoModel(threshold.dist, reform.dist, du, crossing, start));
+    } catch (const feq::SpecError &e) {
+      const std::string why = e.what();
+      if (!grid_default || why.rfind("grid:", 0) != 0) throw;
+      throw feq::SpecError(fmt::format("threshold {}: its standard deviation {:.6g} (from its "
+                                       "moments) gives no usable default grid spacing (1/8 of "
+                                       "it, {:.6g}){}; set one with the grid keyword",
+                                       threshold.text, sd, du,
+                                       du > 0.0 ? " for a block's state" : ""));
+    }
+    // what the per-block state depends on (restart check)
+    shaping.add("Nlambda", EQRecord::number(nlambda));
+    shaping.add("kc", EQRecord::number(kc));
+    shaping.add("threshold", EQRecord::distribution(threshold));
+    shaping.add("reform", EQRecord::distribution(reform));
+    shaping.add("grid", EQRecord::number(du));
+    shaping.add("crossing", crossing == feq::Crossing::EXACT ? "exact" : "step");
+    shaping.add("start", start == feq::MEStart::RELAXED ? "relaxed" : "reform");
+    shaping.add("dir", std::string(1, "xyz"[idir]));
   } catch (const feq::SpecError &e) {
     const std::string msg = e.what();
     error->all(FLERR, "Fix eq/meso{}{}", msg.rfind(':', 0) == 0 ? "" : " ", msg);
@@ -179,6 +197,14 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
                group->names[igroup]);
   const bigint nblocks = group->count(igroup);
   if (nblocks == 0) error->all(FLERR, "Fix eq/meso: group {} has no atoms", group->names[igroup]);
+  // the largest force of a block, N_lambda k_c max(x_s), must be finite
+  constexpr double FMAX = 1e300;
+  if (!(nlambda * kc * threshold.dist->effective_upper() <= FMAX))
+    error->all(FLERR, "Fix eq/meso: Nlambda = {} and kc = {} with threshold {} (x_s up to {:.6g}) "
+                      "would overflow the blocks' forces (Nlambda kc max(x_s) = {:.6g} must stay <= "
+                      "{:g}): lower Nlambda or kc", nlambda, kc, threshold.text,
+               threshold.dist->effective_upper(), nlambda * kc * threshold.dist->effective_upper(),
+               FMAX);
   xc = threshold.dist->mean();
   if (window == 0.0) window = xc;
   stage = stage0;
@@ -211,6 +237,8 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
     if (atom->mask[i] & groupbit) init_block(i);
+  // the outputs before the first run: those of the blocks at their sites
+  apply(false, nullptr);
 }
 
 FixEQMeso::~FixEQMeso()
@@ -284,12 +312,12 @@ void FixEQMeso::setup(int vflag)
 
 void FixEQMeso::min_setup(int /*vflag*/)
 {
-  apply(false);
+  apply(false, atom->f);
 }
 
 void FixEQMeso::post_force(int /*vflag*/)
 {
-  apply(true);
+  apply(true, atom->f);
   if (screen_flag) screening();
   if (check_every > 0 && update->ntimestep % check_every == 0) check_normalization();
 }
@@ -303,18 +331,18 @@ void FixEQMeso::post_force_respa(int vflag, int ilevel, int /*iloop*/)
 // response of the attached contacts to the block's displacement
 void FixEQMeso::min_post_force(int /*vflag*/)
 {
-  apply(false);
+  apply(false, atom->f);
 }
 
 /* ----------------------------------------------------------------------
    each block's master equation to its current displacement (advance), or
-   its elastic response without breaking (minimization); forces -F_n and
-   the driving springs
+   its elastic response without breaking (minimization, definition);
+   forces -F_n and the driving springs into f (nullptr: the state and the
+   outputs only)
 ------------------------------------------------------------------------- */
 
-void FixEQMeso::apply(bool advance)
+void FixEQMeso::apply(bool advance, double **f)
 {
-  double *const *const f = atom->f;
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int d = idir;
@@ -354,7 +382,7 @@ void FixEQMeso::apply(bool advance)
     }
     const double att = model->attached(q);
     const double fd = drive_flag ? kdrive * (stage - X) : 0.0;
-    f[i][d] += fd - F;
+    if (f) f[i][d] += fd - F;
     st[M_DISP] = X;
     st[M_FORCE] = F;
     st[M_FDRIVE] = fd;
@@ -553,31 +581,6 @@ void FixEQMeso::check_normalization()
                       "stretches (|int Q - 1| = {:.3g} > {}); the state is corrupt or the grid ({}) "
                       "is too coarse for the motion", who, worst, NORM_TOLERANCE, model->grid());
   MPI_Allreduce(&worst, &norm_max, 1, MPI_DOUBLE, MPI_MAX, world);
-}
-
-/* ----------------------------------------------------------------------
-   global restart: the stage (FixEQBlocks) and the signature of what the
-   blocks' states depend on (thresholds, reform, grid, crossing, start)
-------------------------------------------------------------------------- */
-
-void FixEQMeso::write_restart(FILE *fp)
-{
-  const double list[4] = {stage, vstage, (double) drive_flag, signature};
-  if (comm->me == 0) {
-    int size = 4 * sizeof(double);
-    fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 4, fp);
-  }
-}
-
-void FixEQMeso::restart(char *buf)
-{
-  const double *list = (const double *) buf;
-  if (list[3] != signature)
-    error->all(FLERR, "Fix eq/meso: the restart file's blocks were written by a fix eq/meso with "
-                      "other thresholds, reform, grid, crossing or start: re-specify it as in the "
-                      "run that wrote them");
-  FixEQBlocks::restart(buf);
 }
 
 /* ----------------------------------------------------------------------

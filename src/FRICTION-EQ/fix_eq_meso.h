@@ -49,8 +49,6 @@ class FixEQMeso : public FixEQBlocks {
   double compute_scalar() override;
   double compute_vector(int) override;
   int modify_param(int, char **) override;
-  void write_restart(FILE *) override;
-  void restart(char *) override;
   void unpack_restart(int, int) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
@@ -68,7 +66,6 @@ class FixEQMeso : public FixEQBlocks {
  private:
   std::unique_ptr<feq::MesoModel> model;
   double nlambda, kc, xc;    // contacts per block, their stiffness, mean threshold
-  double signature;          // hash of what the blocks' states depend on (restart check)
   // screening: Pi(r) = nlambda kappa (lambda_c / r)^3 for r <= rcut
   int screen_flag;
   double kappa, lambda_c, rcut;
@@ -92,7 +89,7 @@ class FixEQMeso : public FixEQBlocks {
   bigint neval, reduced_eval;
 
   void init_block(int i) override;
-  void apply(bool advance);
+  void apply(bool advance, double **f);
   void partners();
   // the ghost atom cutoff must hold rcut + skin (error naming screen)
   void check_ghost_cutoff(double have);

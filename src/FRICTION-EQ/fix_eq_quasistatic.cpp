@@ -62,7 +62,7 @@ FixEQQuasistatic::FixEQQuasistatic(LAMMPS *lmp, int narg, char **arg) :
 
 int FixEQQuasistatic::setmask()
 {
-  return INITIAL_INTEGRATE | POST_RUN;
+  return INITIAL_INTEGRATE;
 }
 
 double FixEQQuasistatic::driver_tolerance() const
@@ -139,11 +139,6 @@ EQEventSource *FixEQQuasistatic::contacts_now()
                       "during the run (e.g. unfix in run N pre no every M); use pre yes, or define "
                       "the fixes anew between runs", id, contacts_label);
   return c;
-}
-
-void FixEQQuasistatic::post_run()
-{
-  contacts.clear();
 }
 
 /* ----------------------------------------------------------------------

@@ -34,7 +34,6 @@ class FixEQQuasistatic : public Fix, public EQEventDriver {
   int setmask() override;
   void init() override;
   void initial_integrate(int) override;
-  void post_run() override;
   double compute_scalar() override;
   double compute_vector(int) override;
   void write_restart(FILE *) override;

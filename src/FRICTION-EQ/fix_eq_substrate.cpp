@@ -26,6 +26,7 @@
 #include "utils.h"
 
 #include "eq_lammps_util.h"
+#include "eq_record_lammps.h"
 #include "eq_random.h"
 
 #include <cmath>
@@ -175,6 +176,15 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Fix eq/substrate {}: the work per period W = int_0^uc phi du = {:.6g} would "
                       "overflow the energies; allowed: W <= {:g}", arg[4], shape.work(), EMAX);
   }
+  // the largest substrate force k_c d max(phi) and energy per period k_c d W
+  const double dmax = disorder.dist ? disorder.dist->effective_upper() : 1.0;
+  if (!(kc * dmax * shape.max_phi() <= EMAX) || !(kc * dmax * shape.work() <= EMAX))
+    error->all(FLERR, "Fix eq/substrate: kc = {} with the substrate {} (max phi = {:.6g}, work per "
+                      "period {:.6g}){} would overflow the forces or energies (kc d max(phi) and "
+                      "kc d W must stay <= {:g}): lower kc, uc or the disorder",
+               kc, shape.describe(), shape.max_phi(), shape.work(),
+               disorder.dist ? fmt::format(" and disorder up to {:.6g}", dmax) : std::string(),
+               EMAX);
   if (drive_flag && !(0.5 * kdrive * stage0 * stage0 <= EMAX))
     error->all(FLERR, "Fix eq/substrate stage: X0 = {} is too large for drive K = {}: the "
                       "driving-spring energy K X0^2/2 = {:.6g} would overflow the energies; "
@@ -189,6 +199,17 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
   if (nblocks == 0) error->all(FLERR, "Fix eq/substrate: group {} has no atoms", group->names[igroup]);
 
   stage = stage0;
+  // what the stored blocks are made with (restart check): their k_c, the
+  // substrate (the well origins are multiples of its period), the
+  // quenched factors, the direction and the meaning of the well origins
+  shaping.add("kc", EQRecord::number(kc));
+  shaping.add("shape", fmt::format("{}|{:.17g}|{:.17g}|{:.17g}", shape.describe(), shape.period(),
+                                   shape.work(), shape.max_phi()));
+  shaping.add("disorder", disorder.dist ? EQRecord::distribution(disorder) + "|" +
+                                              std::to_string(dseed)
+                                        : std::string("none"));
+  shaping.add("dir", std::string(1, "xyz"[idir]));
+  shaping.add("reverse", rev_break ? "break" : "periodic");
 
   if (comm->me == 0)
     utils::logmesg(lmp, "fix eq/substrate: {} blocks along {}; F_s = {} * phi(u), phi {}, "
@@ -215,6 +236,8 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
     if (atom->mask[i] & groupbit) init_block(i);
+  // the outputs before the first run: those of the blocks at their sites
+  apply(nullptr);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -242,6 +265,15 @@ int FixEQSubstrate::setmask()
 void FixEQSubstrate::init()
 {
   init_blocks();
+  // minimize: the line search of the energy-based minimizers compares
+  // energies, which must include this fix's (min_style fire and quickmin
+  // use the forces only)
+  if (update->whichflag == 2 && !thermo_energy && update->minimize_style &&
+      !utils::strmatch(update->minimize_style, "^fire") &&
+      !utils::strmatch(update->minimize_style, "^quickmin"))
+    error->all(FLERR, "Fix {} eq/substrate: minimize (min_style {}) needs the substrate energy: add "
+                      "fix_modify {} energy yes (or use min_style fire or quickmin)",
+               id, update->minimize_style, id);
   const double w = force_window();
   if (exact && w != window && comm->me == 0)
     utils::logmesg(lmp, "fix eq/substrate: crossings corrected for a force window of {} "
@@ -298,12 +330,12 @@ void FixEQSubstrate::setup(int vflag)
 
 void FixEQSubstrate::min_setup(int /*vflag*/)
 {
-  apply();
+  apply(atom->f);
 }
 
 void FixEQSubstrate::post_force(int /*vflag*/)
 {
-  apply();
+  apply(atom->f);
 }
 
 void FixEQSubstrate::post_force_respa(int vflag, int ilevel, int /*iloop*/)
@@ -313,7 +345,7 @@ void FixEQSubstrate::post_force_respa(int vflag, int ilevel, int /*iloop*/)
 
 void FixEQSubstrate::min_post_force(int /*vflag*/)
 {
-  apply();
+  apply(atom->f);
 }
 
 /* ----------------------------------------------------------------------
@@ -346,12 +378,12 @@ void FixEQSubstrate::init_block(int i)
    the integrator applies a force over: [t_n, t_n+1] for fix brownian
    (w = 1), [t_n+1/2, t_n+3/2] for velocity-Verlet integrators (w = 1/2).
    The missing impulse (w - theta) J dt is added to the force of this step,
-   so the crossing no longer costs an error of order dt.
+   so the crossing no longer costs an error of order dt.  f: the forces
+   are added to it (nullptr: the state and outputs only, at definition)
 ------------------------------------------------------------------------- */
 
-void FixEQSubstrate::apply()
+void FixEQSubstrate::apply(double **f)
 {
-  double *const *const f = atom->f;
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int d = idir;
@@ -432,7 +464,7 @@ void FixEQSubstrate::apply()
       }
     }
     const double fd = drive_flag ? K * (Xs - u) : 0.0;
-    f[i][d] += fs + fd;
+    if (f) f[i][d] += fs + fd;
     st[DISP] = u;
     st[FSUB] = fs;
     st[FDRIVE] = fd;

@@ -94,7 +94,7 @@ class FixEQSubstrate : public FixEQBlocks {
   void reduce();
 
   void init_block(int i) override;
-  void apply();
+  void apply(double **f);
   double force_window();
 };
 

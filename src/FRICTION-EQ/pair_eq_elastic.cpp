@@ -178,6 +178,7 @@ void PairEQElastic::settings(int narg, char **arg)
   if (narg != 1 && narg != 3)
     error->all(FLERR, "Illegal pair_style eq/elastic command: expected 'pair_style eq/elastic rcut "
                       "[check N]'");
+  ++ncoeff;    // the cutoffs change
   cut_global = EQUtil::numeric(lmp, "Pair style eq/elastic: rcut", arg[0]);
   if (!(cut_global > 0.0) || !std::isfinite(cut_global))
     error->all(FLERR, "Pair style eq/elastic: rcut must be a finite number > 0 (got {})", arg[0]);
@@ -268,6 +269,10 @@ void PairEQElastic::coeff(int narg, char **arg)
         throw feq::SpecError(std::string("lambda_c '") + arg[3] + "' is not a number > 0");
       }
       kern = feq::make_crossover(f, l);
+      if (!std::isfinite(f * l * l) || !std::isfinite(f / l))
+        throw feq::SpecError(fmt::format("ftilde {} and lambda_c {} overflow the kernel (ftilde "
+                                         "lambda_c^2 and ftilde/lambda_c must be finite)",
+                                         arg[2], arg[3]));
       next = 4;
     }
     if (narg > next) {
@@ -472,8 +477,9 @@ void PairEQElastic::refresh()
 {
   EQCoordinateSource *src = live_source();
   if (ncoeff != ncoeff_init)
-    error->all(FLERR, "Pair style eq/elastic: pair_coeff during a run (run N pre no every M) is not "
-                      "supported: the kernels are set up when a run starts; use pre yes");
+    error->all(FLERR, "Pair style eq/elastic: pair_style or pair_coeff during a run (run N pre no "
+                      "every M) is not supported: the kernels and cutoffs are set up when a run "
+                      "starts; use pre yes");
   grow();
   const bigint eval = src->source_evaluation();
   const bigint version = src->source_version();

@@ -148,9 +148,9 @@ TEST_F(EQMesoErrors, RestartOfAnotherGrid)
     command("clear");
     command("read_restart eq_meso_grid.restart");
   });
-  TEST_FAILURE(".*ERROR: Fix eq/meso: the restart file's blocks were written by a fix eq/meso with "
-               "other thresholds, reform, grid, crossing or start: re-specify it as in the run "
-               "that wrote them.*",
+  TEST_FAILURE(".*ERROR: Fix m eq/meso: grid differs from that of the run that wrote the restart "
+               "file: the stored blocks were made with the other grid; re-specify grid as in that "
+               "run.*",
                fix(std::string("100 1.0 ") + T + " grid 0.01"););
   std::remove("eq_meso_grid.restart");
 }
@@ -166,9 +166,8 @@ TEST_F(EQMesoErrors, RestartOfOtherThresholds)
     command("clear");
     command("read_restart eq_meso_thr.restart");
   });
-  TEST_FAILURE(".*ERROR: Fix eq/meso: the restart file's blocks were written by a fix eq/meso with "
-               "other thresholds, reform, grid, crossing or start: re-specify it as in the run "
-               "that wrote them.*",
+  TEST_FAILURE(".*ERROR: Fix m eq/meso: threshold differs from that of the run that wrote the "
+               "restart file.*",
                fix("100 1.0 threshold uniform 0.7 1.25 grid 0.02"););
   std::remove("eq_meso_thr.restart");
 }
