@@ -94,7 +94,12 @@ def run(scale=1, nprocs=1, seed=4711, dX=0.01, out=None, plot=True, quiet=False)
     if plot:
         res["plot"] = str(make_plot(out, X, eq[:, 2], mef, ex, z, centers, counts, total, width, qs, N))
         if not quiet:
-            print(f"  plot: {res['plot']}")
+            plot_path = Path(res["plot"]).resolve()
+            try:    # relative to the repository (or the current folder) where it can be
+                plot_path = plot_path.relative_to(Path.cwd().resolve())
+            except ValueError:
+                pass
+            print(f"  plot: {plot_path}")
     return res
 
 
