@@ -15,6 +15,7 @@
 #include "update.h"
 #include "utils.h"
 
+#include "eq_cite.h"
 #include "eq_distribution.h"
 #include "eq_lammps_util.h"
 #include "eq_link.h"
@@ -30,6 +31,7 @@ FixEQBlocks::FixEQBlocks(LAMMPS *lmp, int narg, char **arg) :
     FixEQPerAtom(lmp, narg, arg), idir(0), sitecol(0), flagcol(0), ilevel_respa(0), nlevels_respa(0),
     drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0), nevaluation(0)
 {
+  EQCite::add(lmp);
   name = fmt::format("fix {} {}", id, style);
 }
 

@@ -10,6 +10,7 @@
 #include "utils.h"
 #include "variable.h"
 
+#include "eq_cite.h"
 #include "eq_lammps_util.h"
 #include "eq_me_job.h"
 
@@ -22,6 +23,7 @@ using namespace LAMMPS_NS;
 
 void EQMe::command(int narg, char **arg)
 {
+  EQCite::add(lmp);
   if (narg < 1)
     error->all(FLERR, "Illegal eq/me command: expected 'eq/me threshold <style> <values> "
                       "[keyword values ...]'");

@@ -25,6 +25,7 @@
 #include "update.h"
 #include "utils.h"
 
+#include "eq_cite.h"
 #include "eq_contact.h"
 #include "eq_lammps_util.h"
 #include "eq_link.h"
@@ -94,6 +95,7 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
     FixEQPerAtom(lmp, narg, arg), break_tol(0.0), interacting(0), avfp(nullptr), av_flag(0),
     rounds_last(0), nevaluation(0), nversion(0), chg_from(-1)
 {
+  EQCite::add(lmp);
   name = fmt::format("fix {} eq/contacts", id);
   double kc;
   int exact, start_reform, reform_force = 1;

@@ -12,6 +12,7 @@
 #include "update.h"
 #include "utils.h"
 
+#include "eq_cite.h"
 #include "eq_lammps_util.h"
 #include "eq_link.h"
 
@@ -29,6 +30,7 @@ constexpr double QS_TOLERANCE = 1.0e-13;
 FixEQQuasistatic::FixEQQuasistatic(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dxmax(0.0), xtotal(0.0), dx_last(0.0), idir(0)
 {
+  EQCite::add(lmp);
   name = fmt::format("fix {} eq/quasistatic", id);
   if (group->dynamic[igroup])
     error->all(FLERR, "Fix eq/quasistatic: group {} is dynamic; allowed: a static group",

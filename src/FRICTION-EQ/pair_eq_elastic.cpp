@@ -50,6 +50,7 @@
 #include "update.h"
 #include "utils.h"
 
+#include "eq_cite.h"
 #include "eq_distribution.h"
 #include "eq_lammps_compat.h"
 #include "eq_lammps_util.h"
@@ -85,6 +86,7 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
     version_seen(-1), ghost_version(-1), eval_computed(-1), eval_built(-1), pending(0), nfield(0),
     vir_at(-1), comm_mode(0)
 {
+  EQCite::add(lmp);
   single_enable = 1;
   single_extra = 7;
   svector = new double[single_extra];
