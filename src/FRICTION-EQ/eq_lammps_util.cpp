@@ -80,8 +80,9 @@ feq::FileLoader EQUtil::file_loader(LAMMPS *lmp)
     if (me == 0) {
       const std::string path = utils::get_potential_file_path(file);
       try {
-        if (path.empty()) throw feq::SpecError("cannot open table file '" + file + "'");
-        text = feq::load_file(path);
+        // not found: the name as given, for the system's reason (no such
+        // file, no permission, a directory)
+        text = feq::load_file(path.empty() ? file : path);
       } catch (const feq::SpecError &e) {
         ok = 0;
         err = e.what();

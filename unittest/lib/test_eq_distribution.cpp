@@ -257,6 +257,19 @@ TEST(Distributions, DeltaIsAPointMass)
 
 /* ---------------------------------------------------------------------- */
 
+namespace {
+std::string parse_error(Role role, std::vector<std::string> args)
+{
+  size_t pos = 0;
+  try {
+    parse_distribution(role, args, pos, parse_number);
+  } catch (const SpecError &e) {
+    return e.what();
+  }
+  return "no error";
+}
+}    // namespace
+
 TEST(Tables, ReadPotentialsFile)
 {
   const std::string path = std::string(FEQ_SOURCE_DIR) + "/potentials/eq_thresholds.table";
@@ -327,6 +340,30 @@ TEST(Tables, ErrorsNameFileKeywordAndLine)
   std::remove(bad.c_str());
 }
 
+// A path that is a directory opens as a stream on Linux and reads as
+// empty: the message said "keyword ... not found"; it names the cause
+TEST(Tables, DirectoryIsNamedAsSuch)
+{
+  std::vector<double> x, p;
+  const std::string dir = std::string(FEQ_SOURCE_DIR) + "/potentials";
+  try {
+    read_table_file(dir, "K", x, p);
+    FAIL();
+  } catch (const SpecError &e) {
+    EXPECT_EQ(std::string(e.what()),
+              "cannot open table file '" + dir + "': it is a directory, not a file");
+  }
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"table", ".", "K"}),
+              "threshold table: cannot open table file '.': it is a directory, not a file");
+  try {
+    load_file("/nonexistent/file.table");
+    FAIL();
+  } catch (const SpecError &e) {
+    EXPECT_EQ(std::string(e.what()),
+              "cannot open table file '/nonexistent/file.table' (No such file or directory)");
+  }
+}
+
 // The 'N n' line and the point count (fuzz: 'N 2.5' was read as N 2, more
 // points than N were dropped, a flag after N was ignored)
 TEST(Tables, CountLineAndPointCountAreExact)
@@ -389,19 +426,6 @@ TEST(Tables, ShippedThresholdTablesAreExact)
 }
 
 /* ---------------------------------------------------------------------- */
-
-namespace {
-std::string parse_error(Role role, std::vector<std::string> args)
-{
-  size_t pos = 0;
-  try {
-    parse_distribution(role, args, pos, parse_number);
-  } catch (const SpecError &e) {
-    return e.what();
-  }
-  return "no error";
-}
-}    // namespace
 
 TEST(Parse, ValidSpecs)
 {

@@ -8,9 +8,12 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
+
+#include <sys/stat.h>
 
 namespace feq {
 
@@ -582,8 +585,18 @@ DistributionPtr make_table(const std::vector<double> &x, const std::vector<doubl
 
 std::string load_file(const std::string &path)
 {
+  // a directory opens as a stream on Linux and then reads as empty: the
+  // message would be "keyword ... not found"
+  struct stat sb;
+  if (::stat(path.c_str(), &sb) == 0 && (sb.st_mode & S_IFMT) == S_IFDIR)
+    throw SpecError("cannot open table file '" + path + "': it is a directory, not a file");
+  errno = 0;
   std::ifstream in(path);
-  if (!in) throw SpecError("cannot open table file '" + path + "'");
+  if (!in) {
+    const int err = errno;
+    throw SpecError("cannot open table file '" + path + "'" +
+                    (err ? " (" + std::string(std::strerror(err)) + ")" : std::string()));
+  }
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();

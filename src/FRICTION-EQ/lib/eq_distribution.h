@@ -87,7 +87,8 @@ void read_table_file(const std::string &path, const std::string &keyword, std::v
 // The same from the file's contents (name: for messages).
 void read_table_text(const std::string &text, const std::string &name, const std::string &keyword,
                      std::vector<double> &x, std::vector<double> &p);
-// The contents of a file; throws SpecError "cannot open table file '...'".
+// The contents of a file; throws SpecError "cannot open table file '...'"
+// with the cause (a directory, the system's reason).
 std::string load_file(const std::string &path);
 
 // Standard normal helpers (exposed for tests).
