@@ -727,8 +727,24 @@ double parse_number(const std::string &token)
   errno = 0;
   char *end = nullptr;
   const double v = std::strtod(token.c_str(), &end);
-  if (token.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+  const bool range = errno == ERANGE;
+  if (token.empty() || end == token.c_str() || *end != '\0')
     throw SpecError("expected a number, got '" + token + "'");
+  // strtod reads them all, the causes differ: say which
+  if (std::isnan(v)) throw SpecError("value '" + token + "' is not a number (NaN)");
+  if (std::isinf(v))
+    throw SpecError("value '" + token + "' is " +
+                    (range ? "beyond the range of a double (largest " +
+                                 fmtnum(std::numeric_limits<double>::max()) + ")"
+                           : std::string("infinite")));
+  if (std::fpclassify(v) == FP_SUBNORMAL)
+    throw SpecError("value '" + token + "' is subnormal (nonzero and smaller in magnitude than " +
+                    fmtnum(std::numeric_limits<double>::min()) +
+                    ", the smallest normal double: it would lose precision); write 0 or a "
+                    "normal number");
+  if (v == 0.0 && range)
+    throw SpecError("value '" + token + "' is below the subnormal range of a double (it would "
+                    "be read as 0); write 0 or a normal number");
   return v;
 }
 
@@ -773,7 +789,10 @@ DistributionSpec parse_distribution(Role role, const std::vector<std::string> &a
       const std::string &tok = args[pos++];
       try {
         v.push_back(number(tok));
-      } catch (const SpecError &) {
+      } catch (const SpecError &e) {
+        // a number that is not usable (subnormal, out of range): its cause
+        const std::string why = e.what();
+        if (why.rfind("value '", 0) == 0) throw SpecError(where + ": " + name + ": " + why);
         throw SpecError(where + ": expected a number for " + name + ", got '" + tok + "'");
       }
     }
