@@ -148,6 +148,110 @@ TEST_F(EQMessages, DISABLED_SubnormalNumbersInKernelTables)
   std::remove("eq_snk.table");
 }
 
+/* ----------------------------------------------------------------------
+   4. per-atom restart records: the restart file's records of one atom are
+   [length, x, y, z, tag, type, mask, image, vx, vy, vz, fix records...],
+   each fix record [length, values...]; here fix spring/self (4) and fix
+   eq/contacts (1 + 7)
+------------------------------------------------------------------------- */
+
+namespace {
+
+std::vector<char> read_bytes(const std::string &file)
+{
+  std::ifstream in(file, std::ios::binary);
+  return std::vector<char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void write_bytes(const std::string &file, const std::vector<char> &b)
+{
+  std::ofstream out(file, std::ios::binary);
+  out.write(b.data(), (std::streamsize) b.size());
+}
+
+double at(const std::vector<char> &b, size_t o)
+{
+  double v;
+  memcpy(&v, &b[o], sizeof(double));
+  return v;
+}
+
+// the byte offsets of the atoms' records: [23, 10 values, 4, 3 values, 8, 7 values]
+std::vector<size_t> atom_records(const std::vector<char> &b)
+{
+  std::vector<size_t> found;
+  const size_t d = sizeof(double);
+  for (size_t o = 0; o + 23 * d <= b.size(); ++o)
+    if (at(b, o) == 23.0 && at(b, o + 11 * d) == 4.0 && at(b, o + 15 * d) == 8.0)
+      found.push_back(o);
+  return found;
+}
+
+}    // namespace
+
+TEST_F(EQMessages, RestartRecordsAreChecked)
+{
+  HIDE_OUTPUT([&] {
+    command("fix sp all spring/self 1.0");
+    command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25");
+    command("run 0 post no");
+    command("write_restart eq_rec.restart");
+  });
+  const double th = lmp->modify->fix[lmp->modify->find_fix("c")]->array_atom[0][1];
+  const std::vector<char> good = read_bytes("eq_rec.restart");
+  const std::vector<size_t> recs = atom_records(good);
+  ASSERT_EQ(recs.size(), 16u);
+  const size_t d = sizeof(double);
+  auto patched = [&](size_t off, double v) {
+    std::vector<char> b = good;
+    for (const size_t o : recs) memcpy(&b[o + off * d], &v, d);
+    write_bytes("eq_rec_bad.restart", b);
+  };
+  auto reread = [&](const std::string &file) {
+    HIDE_OUTPUT([&] {
+      command("clear");
+      command("read_restart " + file);
+    });
+  };
+
+  // the file as written: the state comes back
+  reread("eq_rec.restart");
+  HIDE_OUTPUT([&] { command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25"); });
+  EXPECT_EQ(lmp->modify->fix[lmp->modify->find_fix("c")]->array_atom[0][1], th);
+
+  // this fix's record says 3 values (length 4): another version or settings
+  patched(15, 4.0);
+  reread("eq_rec_bad.restart");
+  TEST_FAILURE(".*ERROR on proc 0: Fix c eq/contacts: the restart file holds 3 values per atom "
+               "for this fix, it expects 7 \\(a corrupt file, or one written by another version "
+               "of the package or other settings\\).*",
+               command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25"););
+  // ... or more than the atom's data holds (it segfaulted or read garbage)
+  patched(15, 1e6);
+  reread("eq_rec_bad.restart");
+  TEST_FAILURE(".*ERROR on proc 0: Fix c eq/contacts: the restart file's per-atom data of atom "
+               "[0-9]+ is garbled: this fix's record \\(record 2\\) has length 1000000, expected "
+               "8 with room for 8.*",
+               command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25"););
+  patched(15, std::nan(""));
+  reread("eq_rec_bad.restart");
+  TEST_FAILURE(".*ERROR on proc 0: Fix c eq/contacts: the restart file's per-atom data of atom "
+               "[0-9]+ is garbled: this fix's record \\(record 2\\) has length nan.*",
+               command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25"););
+  // the record before it (fix spring/self's) is garbled
+  for (const double v : {0.0, -4.0, 2.5, 1e9}) {
+    patched(11, v);
+    reread("eq_rec_bad.restart");
+    TEST_FAILURE(".*ERROR on proc 0: Fix c eq/contacts: the restart file's per-atom data of atom "
+                 "[0-9]+ is garbled: record 1 of the 1 stored before this fix's has length "
+                 "[-0-9.e+]+, expected 1 to 12 \\(a corrupt file, or one written by another "
+                 "version of LAMMPS or the package\\).*",
+                 command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25"););
+  }
+  std::remove("eq_rec.restart");
+  std::remove("eq_rec_bad.restart");
+}
+
 int main(int argc, char **argv)
 {
   MPI_Init(&argc, &argv);
