@@ -106,7 +106,10 @@ EQUtil::Unwrap::Unwrap(Atom *atom, Domain *domain_, int dir_) :
   bits = dir == 0 ? 0 : (dir == 1 ? IMGBITS : IMG2BITS);
   prd = domain->prd[dir];
   triclinic = domain->triclinic != 0;
-  wrapfix = !triclinic && domain->periodicity[dir];
+  // the box vector along dir has length prd[dir] in triclinic boxes too
+  // (h[dir]): a wrap of the image count along dir moves the unwrapped
+  // coordinate by 2 IMGMAX prd[dir] either way
+  wrapfix = domain->periodicity[dir] != 0;
   wrap = 2.0 * IMGMAX * prd;
 }
 
