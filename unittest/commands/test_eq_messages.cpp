@@ -139,10 +139,10 @@ TEST_F(EQMessages, DISABLED_SubnormalNumbersInKernelTables)
 {
   {
     std::ofstream out("eq_snk.table");
-    out << "KERN\nN 3\n\n1 1.0 0.06\n2 2.0 1e-310\n3 3.0 0.0\n";    // 1e-310: line 6
+    out << "KERN\nN 3\n\n1 1.0 0.06\n2 2.0 1e-310\n3 3.0 0.0\n";    // 1e-310: line 5
   }
   HIDE_OUTPUT([&] { command("pair_style eq/elastic 3.0"); });
-  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1 1: table file 'eq_snk.table' line 6: "
+  TEST_FAILURE(".*ERROR: Pair eq/elastic coefficients for 1 1: table file 'eq_snk.table' line 5: "
                "value '1e-310' is subnormal.*",
                command("pair_coeff 1 1 table eq_snk.table KERN"););
   std::remove("eq_snk.table");
