@@ -6,9 +6,14 @@
 #include "eq_fix_peratom.h"
 
 #include "atom.h"
+#include "error.h"
 #include "memory.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <string>
 
 using namespace LAMMPS_NS;
 
@@ -83,12 +88,60 @@ int FixEQPerAtom::pack_restart(int i, double *buf)
   return ncol + 1;
 }
 
+// The records of the restart file are checked before they are used: a
+// garbled file, or one written with another per-atom size (another
+// version of the package, other settings), is an error, not a read past
+// the atom's data.
+namespace {
+// a record length for a message: an integer when it is one
+std::string length_text(double c)
+{
+  if (c == std::floor(c) && std::fabs(c) < 1e15) return std::to_string((long long) c);
+  char buf[32];
+  snprintf(buf, sizeof(buf), "%.10g", c);
+  return buf;
+}
+}    // namespace
+
 void FixEQPerAtom::unpack_restart(int nlocal, int nth)
 {
-  double **extra = atom->extra;
+  const double *const rec = atom->extra[nlocal];
+  const int nstore = atom->nextra_store;
+  // a record's first value is its length (that value included): a whole
+  // number >= 1 that fits in what is left of the atom's stored values
+  auto length_ok = [](double c, int room) {
+    return c >= 1.0 && c <= (double) room && c == std::floor(c);
+  };
   int m = 0;
-  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  memcpy(state[nlocal], &extra[nlocal][m + 1], ncol * sizeof(double));
+  for (int i = 0; i < nth; i++) {
+    const double c = m < nstore ? rec[m] : 0.0;
+    if (m >= nstore || !length_ok(c, nstore - m))
+      error->one(FLERR,
+                 "Fix {} {}: the restart file's per-atom data of atom {} is garbled: record {} "
+                 "of the {} stored before this fix's has length {}, expected 1 to {} (a corrupt "
+                 "file, or one written by another version of LAMMPS or the package)",
+                 id, style, atom->tag[nlocal], i + 1, nth,
+                 m < nstore ? length_text(c) : std::string("(beyond the data)"),
+                 std::max(nstore - m, 0));
+    m += static_cast<int>(c);
+  }
+  const double c = m < nstore ? rec[m] : 0.0;
+  if (m >= nstore || c != (double) (ncol + 1) || ncol + 1 > nstore - m) {
+    if (m < nstore && length_ok(c, nstore - m))
+      error->one(FLERR,
+                 "Fix {} {}: the restart file holds {} values per atom for this fix, it expects "
+                 "{} (a corrupt file, or one written by another version of the package or other "
+                 "settings)",
+                 id, style, static_cast<long>(c) - 1, ncol);
+    error->one(FLERR,
+               "Fix {} {}: the restart file's per-atom data of atom {} is garbled: this fix's "
+               "record (record {}) has length {}, expected {} with room for {} (a corrupt file, "
+               "or one written by another version of the package or other settings)",
+               id, style, atom->tag[nlocal], nth + 1,
+               m < nstore ? length_text(c) : std::string("(beyond the data)"), ncol + 1,
+               std::max(nstore - m, 0));
+  }
+  memcpy(state[nlocal], &rec[m + 1], ncol * sizeof(double));
 }
 
 int FixEQPerAtom::size_restart(int /*nlocal*/)

@@ -80,8 +80,9 @@ feq::FileLoader EQUtil::file_loader(LAMMPS *lmp)
     if (me == 0) {
       const std::string path = utils::get_potential_file_path(file);
       try {
-        if (path.empty()) throw feq::SpecError("cannot open table file '" + file + "'");
-        text = feq::load_file(path);
+        // not found: the name as given, for the system's reason (no such
+        // file, no permission, a directory)
+        text = feq::load_file(path.empty() ? file : path);
       } catch (const feq::SpecError &e) {
         ok = 0;
         err = e.what();
@@ -105,7 +106,10 @@ EQUtil::Unwrap::Unwrap(Atom *atom, Domain *domain_, int dir_) :
   bits = dir == 0 ? 0 : (dir == 1 ? IMGBITS : IMG2BITS);
   prd = domain->prd[dir];
   triclinic = domain->triclinic != 0;
-  wrapfix = !triclinic && domain->periodicity[dir];
+  // the box vector along dir has length prd[dir] in triclinic boxes too
+  // (h[dir]): a wrap of the image count along dir moves the unwrapped
+  // coordinate by 2 IMGMAX prd[dir] either way
+  wrapfix = domain->periodicity[dir] != 0;
   wrap = 2.0 * IMGMAX * prd;
 }
 

@@ -43,6 +43,19 @@ namespace EQUtil {
   // Unwrapped coordinates along one direction: x + n L from the image
   // flags (orthogonal boxes), domain->unmap() for triclinic ones.  Made
   // where it is used (it holds the atom arrays of that moment).
+  //
+  // LAMMPS keeps each image count in IMGBITS bits (IMGMAX = 512 unless
+  // built with -DLAMMPS_BIGBIG): after IMGMAX periodic crossings the count
+  // wraps and the unwrapped coordinate along dir jumps by wrap_length() =
+  // 2 IMGMAX box lengths (the box vector along dir: also in triclinic
+  // boxes, where a wrap of a perpendicular count would move it by 2 IMGMAX
+  // tilts; that takes 512 box lengths of drift across dir and is not
+  // undone).  What is stored as an unwrapped coordinate (a contact's
+  // anchor, a block's site) then lies in the frame of the old count:
+  //   - a stretch (x_u - anchor) is small: stretch() undoes the jump;
+  //   - a displacement (x_u - site) grows without bound (a block that
+  //     slides far): displacement() continues it from its value at the
+  //     last evaluation and moves the site into the current frame.
   class Unwrap {
    public:
     Unwrap(Atom *atom, Domain *domain, int dir);
@@ -52,15 +65,33 @@ namespace EQUtil {
       const int n = int((image[i] >> bits) & IMGMASK) - IMGMAX;
       return x[i][dir] + n * prd;
     }
-    // a difference of unwrapped coordinates (a stretch, a displacement):
-    // LAMMPS keeps the image count in IMGBITS bits, after IMGMAX periodic
-    // crossings it wraps and the unwrapped coordinate jumps by 2 IMGMAX
-    // box lengths; no such difference can be that large: undo the jump
-    double fix(double s) const
+    // a stretch x_u - anchor, known to be far below IMGMAX box lengths:
+    // a jump by whole wrap lengths is undone
+    double stretch(double s) const
     {
       if (wrapfix && std::fabs(s) > 0.5 * wrap) s -= wrap * std::round(s / wrap);
       return s;
     }
+    // the same (the name of the first versions; for stretches only)
+    double fix(double s) const { return stretch(s); }
+    // a displacement x_u - site of atom i that can grow without bound,
+    // from prev, its value at the last evaluation (the atom moved by less
+    // than IMGMAX box lengths since): where the image count wrapped in
+    // between, site moves by the same whole wrap lengths (into the frame
+    // of the current count), so that the displacement continues and every
+    // later evaluation at these positions gives the same number
+    double displacement(int i, double &site, double prev) const
+    {
+      double u = (*this)(i) - site;
+      if (wrapfix && std::fabs(u - prev) > 0.5 * wrap) {
+        site += wrap * std::round((u - prev) / wrap);
+        u = (*this)(i) - site;
+      }
+      return u;
+    }
+    // 2 IMGMAX box lengths along dir: the jump of a wrap (0: dir is not
+    // periodic, no wrap)
+    double wrap_length() const { return wrapfix ? wrap : 0.0; }
 
    private:
     Domain *domain;

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 using namespace feq;
@@ -235,6 +236,20 @@ TEST(ContactModel, RunawayAndNonFiniteAreErrors)
   auto row = fresh_row(m, 4, 0.0);
   long nb = 0;
   EXPECT_THROW(m.resolve(row.data(), 4, 5000.0, 0.0, nb), BreakError);
+  // the message gives the stretch the step ended with (after the 1000
+  // breaks it is only what was left of it)
+  row = fresh_row(m, 4, 0.0);
+  try {
+    m.resolve(row.data(), 4, 5000.0, 0.0, nb);
+    FAIL();
+  } catch (const BreakError &e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("contact 4 broke more than 1000 times in one step (stretch 5000 at the end "
+                        "of the step, ", 0), 0u) << msg;
+    EXPECT_NE(msg.find(" after 1000 breaks, threshold "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("); reduce the timestep or check the reform and threshold distributions"),
+              std::string::npos) << msg;
+  }
   row = fresh_row(m, 4, 0.0);
   EXPECT_THROW(m.resolve(row.data(), 4, std::numeric_limits<double>::infinity(), 0.0, nb),
                BreakError);

@@ -257,6 +257,19 @@ TEST(Distributions, DeltaIsAPointMass)
 
 /* ---------------------------------------------------------------------- */
 
+namespace {
+std::string parse_error(Role role, std::vector<std::string> args)
+{
+  size_t pos = 0;
+  try {
+    parse_distribution(role, args, pos, parse_number);
+  } catch (const SpecError &e) {
+    return e.what();
+  }
+  return "no error";
+}
+}    // namespace
+
 TEST(Tables, ReadPotentialsFile)
 {
   const std::string path = std::string(FEQ_SOURCE_DIR) + "/potentials/eq_thresholds.table";
@@ -327,6 +340,91 @@ TEST(Tables, ErrorsNameFileKeywordAndLine)
   std::remove(bad.c_str());
 }
 
+// A path that is a directory opens as a stream on Linux and reads as
+// empty: the message said "keyword ... not found"; it names the cause
+TEST(Tables, DirectoryIsNamedAsSuch)
+{
+  std::vector<double> x, p;
+  const std::string dir = std::string(FEQ_SOURCE_DIR) + "/potentials";
+  try {
+    read_table_file(dir, "K", x, p);
+    FAIL();
+  } catch (const SpecError &e) {
+    EXPECT_EQ(std::string(e.what()),
+              "cannot open table file '" + dir + "': it is a directory, not a file");
+  }
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"table", ".", "K"}),
+              "threshold table: cannot open table file '.': it is a directory, not a file");
+  try {
+    load_file("/nonexistent/file.table");
+    FAIL();
+  } catch (const SpecError &e) {
+    EXPECT_EQ(std::string(e.what()),
+              "cannot open table file '/nonexistent/file.table' (No such file or directory)");
+  }
+}
+
+// Numbers of tables: strtod reads subnormal and out-of-range values (most
+// with ERANGE): they were all "expected a number", and an exact subnormal
+// (0x1p-1030, no ERANGE) was read silently
+TEST(Tables, NumbersNameTheCause)
+{
+  EXPECT_EQ(parse_number("2.2250738585072014e-308"), std::numeric_limits<double>::min());
+  EXPECT_EQ(parse_number("-0"), 0.0);
+  EXPECT_EQ(parse_number("1e-300"), 1e-300);
+  EXPECT_EQ(parse_number("1.7976931348623157e308"), std::numeric_limits<double>::max());
+  auto why = [](const std::string &tok) -> std::string {
+    try {
+      parse_number(tok);
+    } catch (const SpecError &e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  const std::string sub = "is subnormal (nonzero and smaller in magnitude than 2.225073859e-308, "
+                          "the smallest normal double: it would lose precision); write 0 or a "
+                          "normal number";
+  EXPECT_EQ(why("1e-310"), "value '1e-310' " + sub);
+  EXPECT_EQ(why("-1e-310"), "value '-1e-310' " + sub);
+  EXPECT_EQ(why("4.9e-324"), "value '4.9e-324' " + sub);
+  EXPECT_EQ(why("0x1p-1030"), "value '0x1p-1030' " + sub);
+  EXPECT_EQ(why("2.2250738585072009e-308"), "value '2.2250738585072009e-308' " + sub);
+  EXPECT_EQ(why("1e-400"), "value '1e-400' is below the subnormal range of a double (it would be "
+                           "read as 0); write 0 or a normal number");
+  EXPECT_EQ(why("1e400"),
+            "value '1e400' is beyond the range of a double (largest 1.797693135e+308)");
+  EXPECT_EQ(why("-inf"), "value '-inf' is infinite");
+  EXPECT_EQ(why("nan"), "value 'nan' is not a number (NaN)");
+  EXPECT_EQ(why("abc"), "expected a number, got 'abc'");
+  EXPECT_EQ(why("1.5x"), "expected a number, got '1.5x'");
+  EXPECT_EQ(why(""), "expected a number, got ''");
+
+  // in a table: file, line and value
+  std::vector<double> x, p;
+  auto table_error = [&](const std::string &text) -> std::string {
+    try {
+      read_table_text(text, "t.table", "K", x, p);
+    } catch (const SpecError &e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_EQ(table_error("# c\nK\nN 3\n\n1 0.5 0.0\n2 0.8 1e-310\n3 1.0 0.0\n"),
+            "table file 't.table' line 6: value '1e-310' " + sub);
+  EXPECT_EQ(table_error("K\nN 3\n\n1 0.5 0.0\n2 1e-320 1.0\n3 1.0 0.0\n"),
+            "table file 't.table' line 5: value '1e-320' " + sub);
+  EXPECT_EQ(table_error("K\nN 3\n\n1 0.5 0.0\n2 0.8 1e-400\n3 1.0 0.0\n"),
+            "table file 't.table' line 5: value '1e-400' is below the subnormal range of a "
+            "double (it would be read as 0); write 0 or a normal number");
+  EXPECT_EQ(table_error("K\nN 3\n\n1 0.5 0.0\n2 0.8 2.2250738585072014e-308\n3 1.0 0.0\n"),
+            "no error");
+  // the command line: the cause after the keyword and the value's name
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"uniform", "1e-310", "1.25"}),
+            "threshold uniform: lo: value '1e-310' " + sub);
+  EXPECT_EQ(parse_error(Role::THRESHOLD, {"uniform", "0.75", "x2"}),
+            "threshold uniform: expected a number for hi, got 'x2'");
+}
+
 // The 'N n' line and the point count (fuzz: 'N 2.5' was read as N 2, more
 // points than N were dropped, a flag after N was ignored)
 TEST(Tables, CountLineAndPointCountAreExact)
@@ -389,19 +487,6 @@ TEST(Tables, ShippedThresholdTablesAreExact)
 }
 
 /* ---------------------------------------------------------------------- */
-
-namespace {
-std::string parse_error(Role role, std::vector<std::string> args)
-{
-  size_t pos = 0;
-  try {
-    parse_distribution(role, args, pos, parse_number);
-  } catch (const SpecError &e) {
-    return e.what();
-  }
-  return "no error";
-}
-}    // namespace
 
 TEST(Parse, ValidSpecs)
 {

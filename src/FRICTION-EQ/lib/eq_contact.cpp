@@ -155,12 +155,13 @@ double ContactModel::break_once(double *st, uint64_t tag, double e, double h, do
    LAMMPS keeps the image count in IMGBITS bits: after IMGMAX periodic
    crossings it wraps, and the unwrapped coordinate jumps by 2 IMGMAX box
    lengths.  No stretch can be that large: the caller undoes the jump
-   (eq_lammps_util) before calling resolve().
+   (EQUtil::Unwrap::stretch() in eq_lammps_util) before calling resolve().
 ------------------------------------------------------------------------- */
 
 double ContactModel::resolve(double *st, uint64_t tag, double s, double tol, long &nbreaks) const
 {
   int nb = 0;
+  const double s_step = s;
   while (!(std::fabs(s) < st[CS_THRESHOLD] - tol)) {
     if (!std::isfinite(s))
       throw BreakError("stretch of contact " + std::to_string(tag) + " is " + num(s) +
@@ -169,8 +170,10 @@ double ContactModel::resolve(double *st, uint64_t tag, double s, double tol, lon
     if (++nb > MAX_BREAKS_PER_STEP)
       throw BreakError("contact " + std::to_string(tag) + " broke more than " +
                        std::to_string(MAX_BREAKS_PER_STEP) + " times in one step (stretch " +
-                       num(s) + "); reduce the timestep or check the reform and threshold "
-                                "distributions");
+                       num(s_step) + " at the end of the step, " + num(s) + " after " +
+                       std::to_string(MAX_BREAKS_PER_STEP) + " breaks, threshold " +
+                       num(st[CS_THRESHOLD]) + "); reduce the timestep or check the reform and "
+                       "threshold distributions");
     const double sign = s > 0.0 ? 1.0 : -1.0;
     const double over = exact ? s - sign * st[CS_THRESHOLD] : 0.0;
     ++nbreaks;

@@ -8,9 +8,12 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
+
+#include <sys/stat.h>
 
 namespace feq {
 
@@ -582,8 +585,18 @@ DistributionPtr make_table(const std::vector<double> &x, const std::vector<doubl
 
 std::string load_file(const std::string &path)
 {
+  // a directory opens as a stream on Linux and then reads as empty: the
+  // message would be "keyword ... not found"
+  struct stat sb;
+  if (::stat(path.c_str(), &sb) == 0 && (sb.st_mode & S_IFMT) == S_IFDIR)
+    throw SpecError("cannot open table file '" + path + "': it is a directory, not a file");
+  errno = 0;
   std::ifstream in(path);
-  if (!in) throw SpecError("cannot open table file '" + path + "'");
+  if (!in) {
+    const int err = errno;
+    throw SpecError("cannot open table file '" + path + "'" +
+                    (err ? " (" + std::string(std::strerror(err)) + ")" : std::string()));
+  }
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -714,8 +727,24 @@ double parse_number(const std::string &token)
   errno = 0;
   char *end = nullptr;
   const double v = std::strtod(token.c_str(), &end);
-  if (token.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+  const bool range = errno == ERANGE;
+  if (token.empty() || end == token.c_str() || *end != '\0')
     throw SpecError("expected a number, got '" + token + "'");
+  // strtod reads them all, the causes differ: say which
+  if (std::isnan(v)) throw SpecError("value '" + token + "' is not a number (NaN)");
+  if (std::isinf(v))
+    throw SpecError("value '" + token + "' is " +
+                    (range ? "beyond the range of a double (largest " +
+                                 fmtnum(std::numeric_limits<double>::max()) + ")"
+                           : std::string("infinite")));
+  if (std::fpclassify(v) == FP_SUBNORMAL)
+    throw SpecError("value '" + token + "' is subnormal (nonzero and smaller in magnitude than " +
+                    fmtnum(std::numeric_limits<double>::min()) +
+                    ", the smallest normal double: it would lose precision); write 0 or a "
+                    "normal number");
+  if (v == 0.0 && range)
+    throw SpecError("value '" + token + "' is below the subnormal range of a double (it would "
+                    "be read as 0); write 0 or a normal number");
   return v;
 }
 
@@ -760,7 +789,10 @@ DistributionSpec parse_distribution(Role role, const std::vector<std::string> &a
       const std::string &tok = args[pos++];
       try {
         v.push_back(number(tok));
-      } catch (const SpecError &) {
+      } catch (const SpecError &e) {
+        // a number that is not usable (subnormal, out of range): its cause
+        const std::string why = e.what();
+        if (why.rfind("value '", 0) == 0) throw SpecError(where + ": " + name + ": " + why);
         throw SpecError(where + ": expected a number for " + name + ", got '" + tok + "'");
       }
     }

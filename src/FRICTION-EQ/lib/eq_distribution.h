@@ -87,7 +87,8 @@ void read_table_file(const std::string &path, const std::string &keyword, std::v
 // The same from the file's contents (name: for messages).
 void read_table_text(const std::string &text, const std::string &name, const std::string &keyword,
                      std::vector<double> &x, std::vector<double> &p);
-// The contents of a file; throws SpecError "cannot open table file '...'".
+// The contents of a file; throws SpecError "cannot open table file '...'"
+// with the cause (a directory, the system's reason).
 std::string load_file(const std::string &path);
 
 // Standard normal helpers (exposed for tests).
@@ -129,7 +130,11 @@ constexpr double REFORM_BEYOND_TOLERANCE = 1e-12;
 double reform_beyond_thresholds(const Distribution &Pc, const Distribution &R);
 void check_reform(const Distribution &Pc, const DistributionSpec &reform);
 
-// Strict default number parser (whole token, finite).
+// Strict default number parser (whole token, finite, normal or 0), also
+// the numbers of threshold and substrate tables (read_table_text): throws
+// SpecError "expected a number, got '<token>'" or, for a number strtod
+// reads that is no usable double, "value '<token>' is ..." with the cause
+// (subnormal, below the subnormal range, beyond the range, infinite, NaN).
 double parse_number(const std::string &token);
 
 const char *role_keyword(Role role);
