@@ -81,8 +81,8 @@ const char *USAGE = "expected 'pair_coeff I J ftilde lambda_c [rcut]' or "
 PairEQElastic::PairEQElastic(LAMMPS *lmp) :
     Pair(lmp), check_every(CHECK_DEFAULT), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr),
     lambda(nullptr), kidx(nullptr), mixed(nullptr), anisotropic(0), ncoeff(0), ncoeff_init(0),
-    idir(0), site_distance(false), nmax(0), q(nullptr), xq(nullptr), w(nullptr), h(nullptr),
-    ksum(nullptr), dh(nullptr), mom(nullptr), key(), key_set(false), eval_seen(-1),
+    idir(0), site_distance(false), nmax(0), q(nullptr), w(nullptr), h(nullptr), ksum(nullptr),
+    dh(nullptr), xq(nullptr), mom(nullptr), key(), key_set(false), eval_seen(-1),
     version_seen(-1), ghost_version(-1), eval_computed(-1), eval_built(-1), pending(0), nfield(0),
     vir_at(-1), comm_mode(0)
 {
@@ -108,7 +108,7 @@ PairEQElastic::~PairEQElastic()
 {
   delete[] svector;
   memory->destroy(q);
-  memory->destroy(xq);
+  memory->sfree(xq);
   memory->destroy(w);
   memory->destroy(h);
   memory->destroy(ksum);
@@ -155,14 +155,14 @@ void PairEQElastic::grow()
   if (atom->nmax <= nmax) return;
   nmax = atom->nmax;
   memory->destroy(q);
-  memory->destroy(xq);
+  memory->sfree(xq);
   memory->destroy(w);
   memory->destroy(h);
   memory->destroy(ksum);
   memory->destroy(dh);
   memory->sfree(mom);
   memory->create(q, nmax, "pair:q");
-  memory->create(xq, nmax, "pair:xq");
+  xq = static_cast<double(*)[3]>(memory->smalloc(sizeof(double[3]) * nmax, "pair:xq"));
   memory->create(w, nmax, "pair:w");
   memory->create(h, nmax, "pair:h");
   memory->create(ksum, nmax, "pair:ksum");
@@ -562,14 +562,14 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
   // after breaks), else from x - w (glist is that of the same list)
   if (fresh_ghosts) {
     sync_ghosts();
-    for (int i = 0; i < nall; i++) xq[i] = x[i][d];
+    for (int i = 0; i < nall; i++) memcpy(xq[i], x[i], sizeof(double[3]));
     glist.clear();
     gmark.assign(nall - nlocal, 0);
   } else {
-    for (int i = 0; i < nlocal; i++) xq[i] = x[i][d];
+    for (int i = 0; i < nlocal; i++) memcpy(xq[i], x[i], sizeof(double[3]));
     for (const int i : glist) {
       q[i] = x[i][d] - w[i];
-      xq[i] = x[i][d];
+      memcpy(xq[i], x[i], sizeof(double[3]));
     }
   }
 
@@ -721,10 +721,11 @@ void PairEQElastic::follow(EQCoordinateSource *src, bool count)
   const int nlocal = atom->nlocal;
   const int d = idir;
 
-  // displacements along dir since the last update of every coupled atom
-  // this rank holds; the set of coupled atoms changes only with the key or
-  // a new version that is not a change set
-  double dmin = HUGE_VAL, dmax = -HUGE_VAL, xmax = 0.0;
+  // displacements since the last update of every coupled atom this rank
+  // holds, along every direction (motion across dir changes the k_ij of
+  // contacts); the set of coupled atoms changes only with the key or a
+  // new version that is not a change set
+  Spread spread;
   int changed = -1;
   for (int i = 0; i < nlocal; i++) {
     const double qi = qin[i];
@@ -733,13 +734,7 @@ void PairEQElastic::follow(EQCoordinateSource *src, bool count)
       continue;
     }
     if (std::isnan(qi)) changed = i;
-    const double xi = x[i][d];
-    const double del = xi - xq[i];
-    dmin = del < dmin ? del : dmin;
-    dmax = del > dmax ? del : dmax;
-    const double ax = std::fabs(xi);
-    xmax = ax > xmax ? ax : xmax;
-    xq[i] = xi;
+    spread.add(x[i], xq[i]);
     q[i] = qi;
   }
   if (changed >= 0 && !std::isfinite(x[changed][d]))    // a NaN stretch looks uncoupled
@@ -755,24 +750,41 @@ void PairEQElastic::follow(EQCoordinateSource *src, bool count)
   // before the next list build): a box with many ghosts beyond the cutoff
   // (periodic images in a thin dimension) costs nothing per update
   for (const int i : glist) {
-    const double xi = x[i][d];
-    const double del = xi - xq[i];
-    dmin = del < dmin ? del : dmin;
-    dmax = del > dmax ? del : dmax;
-    const double ax = std::fabs(xi);
-    xmax = ax > xmax ? ax : xmax;
-    xq[i] = xi;
-    q[i] = xi - w[i];
+    spread.add(x[i], xq[i]);
+    q[i] = x[i][d] - w[i];
   }
-
-  const double eps = std::numeric_limits<double>::epsilon();
-  const double tol = UNIFORM_ULPS * eps * (xmax + std::fmax(std::fabs(dmin), std::fabs(dmax)));
-  if (!(dmax - dmin > tol)) {
+  if (spread.rigid()) {
     if (count) ++n_uniform;    // a rigid translation: h, K and the virial hold
   } else {
     if (count) ++n_nonuniform;
     rebuild(false);    // k_ij at the atoms' new distances
   }
+}
+
+// the displacements of the atoms since xq (which follows), their spread
+// along each direction and the size of the coordinates (for the rounding)
+void PairEQElastic::Spread::add(const double *x, double *x0)
+{
+  for (int a = 0; a < 3; a++) {
+    const double del = x[a] - x0[a];
+    lo[a] = del < lo[a] ? del : lo[a];
+    hi[a] = del > hi[a] ? del : hi[a];
+    const double ax = std::fabs(x[a]);
+    xmax = ax > xmax ? ax : xmax;
+    x0[a] = x[a];
+  }
+}
+
+// all atoms moved by the same vector, to the rounding of the positions
+bool PairEQElastic::Spread::rigid() const
+{
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (int a = 0; a < 3; a++) {
+    if (hi[a] < lo[a]) continue;    // no atom
+    const double tol = UNIFORM_ULPS * eps * (xmax + std::fmax(std::fabs(lo[a]), std::fabs(hi[a])));
+    if (hi[a] - lo[a] > tol) return false;
+  }
+  return true;
 }
 
 /* ----------------------------------------------------------------------

@@ -25,6 +25,7 @@ PairStyle(eq/elastic,PairEQElastic);
 #include "eq_field.h"
 #include "eq_kernel.h"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -78,14 +79,21 @@ class PairEQElastic : public Pair, public EQElasticField {
   bool site_distance;
 
   // per-atom arrays (local and ghost unless noted), valid for the key
-  // below: q the coordinates; xq the positions along dir at the last
-  // update; w = x - q along dir (constant while the coordinates change
+  // below: q the coordinates; xq the positions at the last update; w = x - q along dir (constant while the coordinates change
   // only by the motion of the atoms); h, ksum, mom (local) the field,
   // K_i, and the first moments M_i,a = sum_j k_ij del_ij,a of the
   // virial; dh scattered changes
   int nmax;
-  double *q, *xq, *w, *h, *ksum, *dh;
+  double *q, *w, *h, *ksum, *dh;
+  double (*xq)[3];
   double (*mom)[3];
+  // the spread of the displacements since xq (rigid translation test)
+  struct Spread {
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    double xmax = 0.0;
+    void add(const double *x, double *x0);
+    bool rigid() const;
+  };
 
   // coupled pairs of the current neighbor list: atom i's partners are
   // pj[first[2i] .. first[2i+1]) with k_ij pk (special factor included)
