@@ -17,6 +17,7 @@
 
 #include "eq_cite.h"
 #include "eq_distribution.h"
+#include "eq_keywords.h"
 #include "eq_lammps_util.h"
 #include "eq_link.h"
 #include "eq_record_lammps.h"
@@ -28,7 +29,7 @@
 using namespace LAMMPS_NS;
 
 FixEQBlocks::FixEQBlocks(LAMMPS *lmp, int narg, char **arg) :
-    FixEQPerAtom(lmp, narg, arg), idir(0), sitecol(0), flagcol(0), ilevel_respa(0), nlevels_respa(0),
+    FixEQPerAtom(lmp, narg, arg), idir(0), sitecol(0), dispcol(0), flagcol(0), ilevel_respa(0), nlevels_respa(0),
     drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0), nevaluation(0)
 {
   EQCite::add(lmp);
@@ -36,26 +37,22 @@ FixEQBlocks::FixEQBlocks(LAMMPS *lmp, int narg, char **arg) :
 }
 
 bool FixEQBlocks::parse_block_keyword(const std::string &kw, const std::vector<std::string> &args,
-                                      size_t &iarg, const ValueParser &value, double &stage0)
+                                      size_t &iarg, const feq::NumberParser &number,
+                                      double &stage0)
 {
   if (kw == "dir") {
-    if (iarg >= args.size()) throw feq::SpecError("dir: missing value; allowed: x, y, z");
-    const std::string &v = args[iarg++];
-    if (v == "x") idir = 0;
-    else if (v == "y") idir = 1;
-    else if (v == "z") idir = 2;
-    else throw feq::SpecError("dir: unknown value '" + v + "'; allowed: x, y, z");
+    idir = feq::parse_dir(args, iarg);
     return true;
   }
   if (kw == "drive") {
-    kdrive = value(iarg, "drive K");
-    vstage = value(iarg, "drive v");
+    kdrive = feq::parse_finite(args, iarg, "drive K", number);
+    vstage = feq::parse_finite(args, iarg, "drive v", number);
     if (!(kdrive > 0.0)) throw feq::SpecError("drive: K must be > 0 (got " + args[iarg - 2] + ")");
     drive_flag = 1;
     return true;
   }
   if (kw == "stage") {
-    stage0 = value(iarg, "stage X0");
+    stage0 = feq::parse_finite(args, iarg, "stage X0", number);
     return true;
   }
   return false;
@@ -109,7 +106,7 @@ void FixEQBlocks::displacements(double *u)
       continue;
     }
     if (state[i][flagcol] == 0.0) init_block(i);
-    u[i] = unwrap.fix(unwrap(i) - state[i][sitecol]);
+    u[i] = unwrap.displacement(i, state[i][sitecol], state[i][dispcol]);
   }
 }
 

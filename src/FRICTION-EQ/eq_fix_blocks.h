@@ -19,9 +19,9 @@
 
 #include "eq_field.h"
 #include "eq_fix_peratom.h"
+#include "eq_distribution.h"
 #include "eq_record.h"
 
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -59,6 +59,7 @@ class FixEQBlocks : public FixEQPerAtom, public EQCoordinateSource {
   feq::Signature shaping;    // the arguments the stored blocks depend on (set by the derived fix)
   int idir;
   int sitecol;         // column of the site in the per-atom state
+  int dispcol;         // column of the displacement of the last evaluation
   int flagcol;         // a column that is 0 until the block is set up
   int ilevel_respa, nlevels_respa;
   // driving springs to the stage at X_s, advanced by v dt every step
@@ -73,9 +74,8 @@ class FixEQBlocks : public FixEQPerAtom, public EQCoordinateSource {
   // a block first seen in the group (its site is where it is now)
   virtual void init_block(int i) = 0;
   // the keywords dir, drive, stage; false: not one of them
-  using ValueParser = std::function<double(size_t &, const std::string &)>;
   bool parse_block_keyword(const std::string &kw, const std::vector<std::string> &args,
-                           size_t &iarg, const ValueParser &value, double &stage0);
+                           size_t &iarg, const feq::NumberParser &number, double &stage0);
   // r-RESPA levels and the field (from the derived init())
   void init_blocks();
   // fix_modify ID velocity v; returns the number of arguments used (0: not it)

@@ -72,8 +72,6 @@ namespace EQUtil {
       if (wrapfix && std::fabs(s) > 0.5 * wrap) s -= wrap * std::round(s / wrap);
       return s;
     }
-    // the same (the name of the first versions; for stretches only)
-    double fix(double s) const { return stretch(s); }
     // a displacement x_u - site of atom i that can grow without bound,
     // from prev, its value at the last evaluation (the atom moved by less
     // than IMGMAX box lengths since): where the image count wrapped in

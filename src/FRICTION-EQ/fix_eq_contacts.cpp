@@ -27,6 +27,7 @@
 
 #include "eq_cite.h"
 #include "eq_contact.h"
+#include "eq_keywords.h"
 #include "eq_lammps_util.h"
 #include "eq_link.h"
 #include "eq_record_lammps.h"
@@ -91,155 +92,33 @@ class FixEQContacts::Hooks : public AvalancheHooks {
 
 /* ---------------------------------------------------------------------- */
 
+// what the command says
+struct FixEQContacts::Args {
+  double kc = 0.0;
+  bool exact = true, start_reform = false, reform_force = true;
+  bool have_threshold = false;
+  feq::DistributionSpec threshold, reform, stiffness;
+  std::string avfile;
+};
+
 FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
     FixEQPerAtom(lmp, narg, arg), break_tol(0.0), interacting(0), avfp(nullptr), av_flag(0),
     rounds_last(0), nevaluation(0), nversion(0), chg_from(-1)
 {
   EQCite::add(lmp);
   name = fmt::format("fix {} eq/contacts", id);
-  double kc;
-  int exact, start_reform, reform_force = 1;
-  feq::DistributionSpec threshold, reform, stiffness;
-
-  if (narg < 5)
-    error->all(FLERR,
-               "Illegal fix eq/contacts command: expected 'fix ID group eq/contacts kc seed "
-               "threshold <style> <values> [keyword values ...]'");
-  if (!atom->tag_enable) error->all(FLERR, "Fix eq/contacts requires atom IDs (atom_modify id yes)");
-
-  kc = EQUtil::numeric(lmp, "Fix eq/contacts: kc", arg[3]);
-  if (!(kc > 0.0) || !std::isfinite(kc))
-    error->all(FLERR, "Fix eq/contacts: kc must be finite and > 0 (got {})", arg[3]);
-  seed = EQUtil::bnumeric(lmp, "Fix eq/contacts: seed", arg[4]);
-  if (seed <= 0) error->all(FLERR, "Fix eq/contacts: seed must be a positive integer (got {})", arg[4]);
-
-  // defaults
-  idir = 0;
-  exact = 1;
-  start_reform = 0;
-  bool have_threshold = false;
-  reform.dist = feq::make_delta(0.0);
-  reform.text = "delta 0";
-  stiffness.dist = feq::make_delta(1.0);
-  stiffness.text = "constant";
-
-  std::string avfile;
-  const std::vector<std::string> args(arg, arg + narg);
-  const feq::NumberParser number = EQUtil::number_parser(lmp);
-  const feq::FileLoader load = EQUtil::file_loader(lmp);
-
-  size_t iarg = 5;
-  while (iarg < args.size()) {
-    const std::string &kw = args[iarg++];
-    try {
-      if (kw == "threshold") {
-        threshold = feq::parse_distribution(feq::Role::THRESHOLD, args, iarg, number, load);
-        have_threshold = true;
-      } else if (kw == "reform") {
-        reform = feq::parse_distribution(feq::Role::REFORM, args, iarg, number, load);
-      } else if (kw == "stiffness") {
-        stiffness = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number, load);
-      } else if (kw == "dir") {
-        if (iarg >= args.size()) throw feq::SpecError("dir: missing value; allowed: x, y, z");
-        const std::string &v = args[iarg++];
-        if (v == "x") idir = 0;
-        else if (v == "y") idir = 1;
-        else if (v == "z") idir = 2;
-        else throw feq::SpecError("dir: unknown value '" + v + "'; allowed: x, y, z");
-      } else if (kw == "crossing") {
-        if (iarg >= args.size())
-          throw feq::SpecError("crossing: missing value; allowed: exact, step");
-        const std::string &v = args[iarg++];
-        if (v == "exact") exact = 1;
-        else if (v == "step") exact = 0;
-        else throw feq::SpecError("crossing: unknown value '" + v + "'; allowed: exact, step");
-      } else if (kw == "start") {
-        if (iarg >= args.size())
-          throw feq::SpecError("start: missing value; allowed: relaxed, reform");
-        const std::string &v = args[iarg++];
-        if (v == "relaxed") start_reform = 0;
-        else if (v == "reform") start_reform = 1;
-        else throw feq::SpecError("start: unknown value '" + v + "'; allowed: relaxed, reform");
-      } else if (kw == "reform_as") {
-        if (iarg >= args.size())
-          throw feq::SpecError("reform_as: missing value; allowed: stretch, force");
-        const std::string &v = args[iarg++];
-        if (v == "stretch") reform_force = 0;
-        else if (v == "force") reform_force = 1;
-        else throw feq::SpecError("reform_as: unknown value '" + v + "'; allowed: stretch, force");
-      } else if (kw == "avalanches") {
-        if (iarg >= args.size()) throw feq::SpecError("avalanches: missing file name");
-        avfile = args[iarg++];
-        av_flag = 1;
-      } else {
-        throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
-      }
-    } catch (const feq::SpecError &e) {
-      error->all(FLERR, "Fix eq/contacts {}", e.what());
-    }
-  }
-  if (!have_threshold)
-    error->all(FLERR,
-               "Fix eq/contacts: the threshold keyword is required; allowed styles: {}",
-               feq::role_styles(feq::Role::THRESHOLD));
-  if (idir == 2 && domain->dimension == 2)
-    error->all(FLERR, "Fix eq/contacts: dir z is not allowed in a 2d simulation; allowed: x, y");
-  if (start_reform && !reform.dist)
-    error->all(FLERR, "Fix eq/contacts: start reform needs contacts that re-form (reform none given)");
-  // a contact must be able to form below its threshold
-  try {
-    feq::check_reform(*threshold.dist, reform);
-  } catch (const feq::SpecError &e) {
-    error->all(FLERR, "Fix eq/contacts {}", e.what());
-  }
-  if (group->dynamic[igroup])
-    error->all(FLERR, "Fix eq/contacts: group {} is dynamic; contacts need a static group",
-               group->names[igroup]);
-  const bigint ncontacts = group->count(igroup);
-  if (ncontacts == 0)
-    error->all(FLERR, "Fix eq/contacts: group {} has no atoms", group->names[igroup]);
-
-  try {
-    model.reset(new ContactModel(kc, static_cast<uint64_t>(seed), threshold, reform, stiffness,
-                                 exact != 0, reform_force != 0, start_reform != 0));
-  } catch (const feq::SpecError &e) {
-    error->all(FLERR, "Fix eq/contacts {}", e.what());
-  }
-  // the largest contact force k x_s and energy k x_s^2/2 must be finite
-  {
-    const double kmax = kc * stiffness.dist->effective_upper();
-    const double xmax = threshold.dist->effective_upper();
-    constexpr double EMAX = 1e300;
-    if (!(kmax * xmax <= EMAX) || !(0.5 * kmax * xmax * xmax <= EMAX))
-      error->all(FLERR, "Fix eq/contacts: kc = {} with stiffness {} (k up to {:.6g}) and "
-                        "threshold {} (x_s up to {:.6g}) would overflow the contacts' forces or "
-                        "energies (k x_s and k x_s^2/2 must stay <= {:g}): lower kc, the "
-                        "stiffness or the thresholds", kc, stiffness.text, kmax, threshold.text,
-                 xmax, EMAX);
-  }
-  // what the stored contacts are made with (restart check)
-  shaping.add("kc", EQRecord::number(kc));
-  shaping.add("threshold", EQRecord::distribution(threshold));
-  shaping.add("reform", EQRecord::distribution(reform));
-  shaping.add("stiffness", EQRecord::distribution(stiffness));
-  shaping.add("dir", std::string(1, "xyz"[idir]));
-
+  Args a;
+  parse(narg, arg, a);
+  const bigint ncontacts = check(a);
+  make_model(a);
   if (comm->me == 0)
     utils::logmesg(lmp,
                    "fix eq/contacts: {} contacts along {}; thresholds {} (<x_s> = {:.6g}); reform "
                    "{} (as {}); stiffness {} (<k_i> = {:.6g}); crossing {}\n",
-                   ncontacts, "xyz"[idir], threshold.text, threshold.dist->mean(), reform.text,
-                   reform_force ? "force" : "stretch", stiffness.text,
-                   kc * stiffness.dist->mean(), exact ? "exact" : "step");
-  if (av_flag && comm->me == 0) {
-    avfp = fopen(avfile.c_str(), "w");
-    if (!avfp)
-      error->one(FLERR, "Fix eq/contacts avalanches: cannot open file {}: {}", avfile,
-                 utils::getsyserror());
-    fmt::print(avfp, "# fix {} eq/contacts avalanches: one line per step with breaks\n"
-                     "# step size trigger rounds\n", id);
-    fflush(avfp);
-  }
+                   ncontacts, "xyz"[idir], a.threshold.text, a.threshold.dist->mean(),
+                   a.reform.text, a.reform_force ? "force" : "stretch", a.stiffness.text,
+                   a.kc * a.stiffness.dist->mean(), a.exact ? "exact" : "step");
+  if (av_flag) open_avalanches(a.avfile);
 
   restart_global = 1;
   scalar_flag = 1;
@@ -254,16 +133,20 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   ilevel_respa = 0;
   peratom_setup(CS_NCOL, CS_NCOL);
 
-  // relaxed contacts at the current positions (or stretched by R)
+  // relaxed contacts at the current positions (or stretched by R), with
+  // their stretches as every evaluation at these positions finds them (x -
+  // anchor), so that a run 0 changes no output read before it
   const int nlocal = atom->nlocal;
   EQUtil::Unwrap unwrap(atom, domain, idir);
   for (int i = 0; i < nlocal; i++)
     if (atom->mask[i] & groupbit) {
+      double *st = state[i];
       try {
-        model->form(state[i], (uint64_t) atom->tag[i], unwrap(i));
+        model->form(st, static_cast<uint64_t>(atom->tag[i]), unwrap(i));
       } catch (const BreakError &e) {
         error->one(FLERR, "Fix eq/contacts: {}", e.what());
       }
+      st[CS_STRETCH] = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
     }
 
   for (double &v : local_sum) v = 0.0;
@@ -273,6 +156,124 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   reduced_valid = 0;
   // the outputs before the first run: those of the contacts just formed
   tally(nullptr);
+}
+
+// kc seed, then the keywords (messages name the keyword and the allowed values)
+void FixEQContacts::parse(int narg, char **arg, Args &a)
+{
+  if (narg < 5)
+    error->all(FLERR,
+               "Illegal fix eq/contacts command: expected 'fix ID group eq/contacts kc seed "
+               "threshold <style> <values> [keyword values ...]'");
+  if (!atom->tag_enable) error->all(FLERR, "Fix eq/contacts requires atom IDs (atom_modify id yes)");
+  a.kc = EQUtil::numeric(lmp, "Fix eq/contacts: kc", arg[3]);
+  if (!(a.kc > 0.0) || !std::isfinite(a.kc))
+    error->all(FLERR, "Fix eq/contacts: kc must be finite and > 0 (got {})", arg[3]);
+  seed = EQUtil::bnumeric(lmp, "Fix eq/contacts: seed", arg[4]);
+  if (seed <= 0) error->all(FLERR, "Fix eq/contacts: seed must be a positive integer (got {})", arg[4]);
+
+  idir = 0;
+  a.reform.dist = feq::make_delta(0.0);
+  a.reform.text = "delta 0";
+  a.stiffness.dist = feq::make_delta(1.0);
+  a.stiffness.text = "constant";
+  const std::vector<std::string> args(arg, arg + narg);
+  const feq::NumberParser number = EQUtil::number_parser(lmp);
+  const feq::FileLoader load = EQUtil::file_loader(lmp);
+  size_t iarg = 5;
+  while (iarg < args.size()) {
+    const std::string &kw = args[iarg++];
+    try {
+      if (kw == "threshold") {
+        a.threshold = feq::parse_distribution(feq::Role::THRESHOLD, args, iarg, number, load);
+        a.have_threshold = true;
+      } else if (kw == "reform") {
+        a.reform = feq::parse_distribution(feq::Role::REFORM, args, iarg, number, load);
+      } else if (kw == "stiffness") {
+        a.stiffness = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number, load);
+      } else if (kw == "dir") {
+        idir = feq::parse_dir(args, iarg);
+      } else if (kw == "crossing") {
+        a.exact = feq::parse_choice(args, iarg, kw, {"exact", "step"}) == 0;
+      } else if (kw == "start") {
+        a.start_reform = feq::parse_choice(args, iarg, kw, {"relaxed", "reform"}) == 1;
+      } else if (kw == "reform_as") {
+        a.reform_force = feq::parse_choice(args, iarg, kw, {"stretch", "force"}) == 1;
+      } else if (kw == "avalanches") {
+        if (iarg >= args.size()) throw feq::SpecError("avalanches: missing file name");
+        a.avfile = args[iarg++];
+        av_flag = 1;
+      } else {
+        throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
+      }
+    } catch (const feq::SpecError &e) {
+      error->all(FLERR, "Fix eq/contacts {}", e.what());
+    }
+  }
+}
+
+// what the arguments must satisfy together; returns the number of contacts
+bigint FixEQContacts::check(const Args &a)
+{
+  if (!a.have_threshold)
+    error->all(FLERR,
+               "Fix eq/contacts: the threshold keyword is required; allowed styles: {}",
+               feq::role_styles(feq::Role::THRESHOLD));
+  if (idir == 2 && domain->dimension == 2)
+    error->all(FLERR, "Fix eq/contacts: dir z is not allowed in a 2d simulation; allowed: x, y");
+  if (a.start_reform && !a.reform.dist)
+    error->all(FLERR, "Fix eq/contacts: start reform needs contacts that re-form (reform none given)");
+  // a contact must be able to form below its threshold
+  try {
+    feq::check_reform(*a.threshold.dist, a.reform);
+  } catch (const feq::SpecError &e) {
+    error->all(FLERR, "Fix eq/contacts {}", e.what());
+  }
+  if (group->dynamic[igroup])
+    error->all(FLERR, "Fix eq/contacts: group {} is dynamic; contacts need a static group",
+               group->names[igroup]);
+  const bigint ncontacts = group->count(igroup);
+  if (ncontacts == 0)
+    error->all(FLERR, "Fix eq/contacts: group {} has no atoms", group->names[igroup]);
+  // the largest contact force k x_s and energy k x_s^2/2 must be finite
+  const double kmax = a.kc * a.stiffness.dist->effective_upper();
+  const double xmax = a.threshold.dist->effective_upper();
+  constexpr double EMAX = 1e300;
+  if (!(kmax * xmax <= EMAX) || !(0.5 * kmax * xmax * xmax <= EMAX))
+    error->all(FLERR, "Fix eq/contacts: kc = {} with stiffness {} (k up to {:.6g}) and "
+                      "threshold {} (x_s up to {:.6g}) would overflow the contacts' forces or "
+                      "energies (k x_s and k x_s^2/2 must stay <= {:g}): lower kc, the "
+                      "stiffness or the thresholds", a.kc, a.stiffness.text, kmax,
+               a.threshold.text, xmax, EMAX);
+  return ncontacts;
+}
+
+// the break engine, and what the stored contacts are made with (restart check)
+void FixEQContacts::make_model(const Args &a)
+{
+  try {
+    model.reset(new ContactModel(a.kc, static_cast<uint64_t>(seed), a.threshold, a.reform,
+                                 a.stiffness, a.exact, a.reform_force, a.start_reform));
+  } catch (const feq::SpecError &e) {
+    error->all(FLERR, "Fix eq/contacts {}", e.what());
+  }
+  shaping.add("kc", EQRecord::number(a.kc));
+  shaping.add("threshold", EQRecord::distribution(a.threshold));
+  shaping.add("reform", EQRecord::distribution(a.reform));
+  shaping.add("stiffness", EQRecord::distribution(a.stiffness));
+  shaping.add("dir", std::string(1, "xyz"[idir]));
+}
+
+void FixEQContacts::open_avalanches(const std::string &file)
+{
+  if (comm->me != 0) return;
+  avfp = fopen(file.c_str(), "w");
+  if (!avfp)
+    error->one(FLERR, "Fix eq/contacts avalanches: cannot open file {}: {}", file,
+               utils::getsyserror());
+  fmt::print(avfp, "# fix {} eq/contacts avalanches: one line per step with breaks\n"
+                   "# step size trigger rounds\n", id);
+  fflush(avfp);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -466,7 +467,7 @@ void FixEQContacts::apply(bool allow_breaks)
         continue;
       }
       const double xu = unwrap(i);
-      double s = unwrap.fix(xu - st[CS_ANCHOR]);
+      double s = unwrap.stretch(xu - st[CS_ANCHOR]);
       st[CS_STRETCH] = s;
       const double tol = ContactModel::tolerance(st, break_tol);
       if (allow_breaks && !(std::fabs(s) < st[CS_THRESHOLD] - tol)) {
@@ -478,7 +479,7 @@ void FixEQContacts::apply(bool allow_breaks)
         st[CS_ANCHOR] = xu - s;
         // the stretch as every later evaluation at these positions finds
         // it (x - anchor), so that run 0 or a restart changes nothing
-        s = unwrap.fix(xu - st[CS_ANCHOR]);
+        s = unwrap.stretch(xu - st[CS_ANCHOR]);
       }
       const double fc = st[CS_STIFFNESS] * s;
       st[CS_STRETCH] = s;
@@ -527,7 +528,7 @@ void FixEQContacts::stretches()
         st[CS_STRETCH] = st[CS_FORCE] = st[CS_FIELD] = 0.0;
         continue;
       }
-      const double s = unwrap.fix(unwrap(i) - st[CS_ANCHOR]);
+      const double s = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
       st[CS_STRETCH] = s;
       qbuf[i] = s;
       members.push_back(i);
@@ -606,7 +607,7 @@ void FixEQContacts::field_step(bool allow_breaks)
     double *st = state[i];
     st[CS_FIELD] = st[CS_THRESHOLD] > 0.0 ? view.h[i] : 0.0;
     if (st[CS_THRESHOLD] > 0.0 && local_sum[SUM_BREAKS] > 0.0)
-      st[CS_STRETCH] = unwrap.fix(unwrap(i) - st[CS_ANCHOR]);
+      st[CS_STRETCH] = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
   }
 }
 

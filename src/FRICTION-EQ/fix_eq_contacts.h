@@ -106,6 +106,11 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   class Hooks;
   friend class Hooks;
 
+  struct Args;
+  void parse(int narg, char **arg, Args &a);
+  bigint check(const Args &a);
+  void make_model(const Args &a);
+  void open_avalanches(const std::string &file);
   void mark_departed();
   EQElasticField *field_now();
   void stretches();

@@ -19,6 +19,7 @@
 #include "error.h"
 #include "force.h"
 #include "group.h"
+#include "memory.h"
 #include "neigh_list.h"
 #include "neighbor.h"
 #include "pair.h"
@@ -27,6 +28,7 @@
 #include "utils.h"
 
 #include "eq_distribution.h"
+#include "eq_keywords.h"
 #include "eq_lammps_compat.h"
 #include "eq_lammps_util.h"
 #include "eq_record_lammps.h"
@@ -58,168 +60,50 @@ enum { COMM_RATE = 1 };
 
 /* ---------------------------------------------------------------------- */
 
-FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
-    FixEQBlocks(lmp, narg, arg), nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
-    lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), pi0_local(0.0), list_stamp(-1), comm_mode(0),
-    check_every(CHECK_DEFAULT), norm_max(0.0), neval(0), reduced_eval(-1)
-{
-  sitecol = M_SITE;
-  flagcol = M_FLAG;
-  for (double &v : local_sum) v = 0.0;
-  for (double &v : global_sum) v = 0.0;
-  if (narg < 7)
-    error->all(FLERR, "Illegal fix eq/meso command: expected 'fix ID group eq/meso Nlambda kc "
-                      "threshold <style> <values> [keyword values ...]'");
-  if (!atom->tag_enable) error->all(FLERR, "Fix eq/meso requires atom IDs (atom_modify id yes)");
-
-  nlambda = EQUtil::numeric(lmp, "Fix eq/meso: Nlambda", arg[3]);
-  if (!(nlambda > 0.0) || !std::isfinite(nlambda))
-    error->all(FLERR, "Fix eq/meso: Nlambda (contacts per block) must be finite and > 0 (got {})",
-               arg[3]);
-  kc = EQUtil::numeric(lmp, "Fix eq/meso: kc", arg[4]);
-  if (!(kc > 0.0) || !std::isfinite(kc))
-    error->all(FLERR, "Fix eq/meso: kc must be finite and > 0 (got {})", arg[4]);
-
-  const std::vector<std::string> args(arg, arg + narg);
-  const feq::NumberParser lmp_number = EQUtil::number_parser(lmp);
-  auto value = [&](size_t &pos, const std::string &what) -> double {
-    if (pos >= args.size()) throw feq::SpecError(what + ": missing value");
-    const std::string &tok = args[pos++];
-    double v;
-    try {
-      v = lmp_number(tok);
-    } catch (const feq::SpecError &) {
-      throw feq::SpecError(what + ": expected a number, got '" + tok + "'");
-    }
-    if (!std::isfinite(v))
-      throw feq::SpecError(what + ": expected a finite number, got '" + tok + "'");
-    return v;
-  };
-
+// what the command says besides what the fix keeps
+struct FixEQMeso::Args {
   feq::DistributionSpec threshold, reform;
-  reform.dist = feq::make_delta(0.0);
-  reform.text = "delta 0";
   bool have_threshold = false;
   double du = 0.0, stage0 = 0.0;
   feq::Crossing crossing = feq::Crossing::EXACT;
   feq::MEStart start = feq::MEStart::RELAXED;
-  size_t iarg = 5;
+};
+
+FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
+    FixEQBlocks(lmp, narg, arg), nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
+    lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), pi0_local(0.0),
+    list_stamp(-1), screened(0), comm_mode(0), check_every(CHECK_DEFAULT), norm_max(0.0),
+    neval(0), reduced_eval(-1), out(nullptr)
+{
+  sitecol = M_SITE;
+  dispcol = M_DISP;
+  flagcol = M_FLAG;
+  for (double &v : local_sum) v = 0.0;
+  for (double &v : global_sum) v = 0.0;
+  Args a;
+  parse(narg, arg, a);
   try {
-    while (iarg < args.size()) {
-      const std::string &kw = args[iarg++];
-      if (parse_block_keyword(kw, args, iarg, value, stage0)) continue;
-      if (kw == "threshold") {
-        threshold = feq::parse_distribution(feq::Role::THRESHOLD, args, iarg, lmp_number,
-                                            EQUtil::file_loader(lmp));
-        have_threshold = true;
-      } else if (kw == "reform") {
-        reform = feq::parse_distribution(feq::Role::REFORM, args, iarg, lmp_number,
-                                         EQUtil::file_loader(lmp));
-      } else if (kw == "grid") {
-        du = value(iarg, "grid du");
-        if (!(du > 0.0)) throw feq::SpecError("grid: du must be > 0 (got " + args[iarg - 1] + ")");
-      } else if (kw == "crossing") {
-        if (iarg >= args.size()) throw feq::SpecError("crossing: missing value; allowed: exact, step");
-        const std::string &v = args[iarg++];
-        if (v == "exact") crossing = feq::Crossing::EXACT;
-        else if (v == "step") crossing = feq::Crossing::STEP;
-        else throw feq::SpecError("crossing: unknown value '" + v + "'; allowed: exact, step");
-      } else if (kw == "start") {
-        if (iarg >= args.size()) throw feq::SpecError("start: missing value; allowed: relaxed, reform");
-        const std::string &v = args[iarg++];
-        if (v == "relaxed") start = feq::MEStart::RELAXED;
-        else if (v == "reform") start = feq::MEStart::REFORM;
-        else throw feq::SpecError("start: unknown value '" + v + "'; allowed: relaxed, reform");
-      } else if (kw == "screen") {
-        kappa = value(iarg, "screen kappa");
-        lambda_c = value(iarg, "screen lambda_c");
-        rcut = value(iarg, "screen rcut");
-        if (!(kappa >= 0.0)) throw feq::SpecError("screen: kappa must be >= 0 (got " + args[iarg - 3] + ")");
-        if (!(lambda_c > 0.0)) throw feq::SpecError("screen: lambda_c must be > 0 (got " + args[iarg - 2] + ")");
-        if (!(rcut > 0.0)) throw feq::SpecError("screen: rcut must be > 0 (got " + args[iarg - 1] + ")");
-        screen_flag = 1;
-      } else if (kw == "window") {
-        window = value(iarg, "window w");
-        if (!(window > 0.0)) throw feq::SpecError("window: w must be > 0 (got " + args[iarg - 1] + ")");
-      } else if (kw == "check") {
-        if (iarg >= args.size()) throw feq::SpecError("check: missing value (steps, 0: never)");
-        const std::string &tok = args[iarg++];
-        if (!utils::is_integer(tok)) throw feq::SpecError("check: expected an integer, got '" + tok + "'");
-        const bigint n = EQUtil::bnumeric(lmp, "Fix eq/meso check", tok);
-        if (n < 0 || n > MAXSMALLINT)
-          throw feq::SpecError("check: steps must be an integer >= 0 (0: never; got " + tok + ")");
-        check_every = (int) n;
-      } else {
-        throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
-      }
-    }
-    if (!have_threshold)
-      throw feq::SpecError(std::string(": the threshold keyword is required; allowed styles: ") +
-                           feq::role_styles(feq::Role::THRESHOLD));
-    // the default grid: 1/8 of the thresholds' standard deviation; a grid
-    // the user did not set is not named as the cause when it fails
-    const bool grid_default = du == 0.0;
-    const double sd = std::sqrt(std::max(0.0, threshold.dist->variance()));
-    if (grid_default) du = GRID_DEFAULT_SD * sd;
-    try {
-      if (grid_default && !(du > 0.0))
-        throw feq::SpecError("grid: zero width");
-      model.reset(new feq::MesoModel(threshold.dist, reform.dist, du, crossing, start));
-    } catch (const feq::SpecError &e) {
-      const std::string why = e.what();
-      if (!grid_default || why.rfind("grid:", 0) != 0) throw;
-      throw feq::SpecError(fmt::format("threshold {}: its standard deviation {:.6g} (from its "
-                                       "moments) gives no usable default grid spacing (1/8 of "
-                                       "it, {:.6g}){}; set one with the grid keyword",
-                                       threshold.text, sd, du,
-                                       du > 0.0 ? " for a block's state" : ""));
-    }
-    // what the per-block state depends on (restart check)
-    shaping.add("Nlambda", EQRecord::number(nlambda));
-    shaping.add("kc", EQRecord::number(kc));
-    shaping.add("threshold", EQRecord::distribution(threshold));
-    shaping.add("reform", EQRecord::distribution(reform));
-    shaping.add("grid", EQRecord::number(du));
-    shaping.add("crossing", crossing == feq::Crossing::EXACT ? "exact" : "step");
-    shaping.add("start", start == feq::MEStart::RELAXED ? "relaxed" : "reform");
-    shaping.add("dir", std::string(1, "xyz"[idir]));
+    make_model(a);
   } catch (const feq::SpecError &e) {
     const std::string msg = e.what();
     error->all(FLERR, "Fix eq/meso{}{}", msg.rfind(':', 0) == 0 ? "" : " ", msg);
   }
-  if (stage0 != 0.0 && !drive_flag)
-    error->all(FLERR, "Fix eq/meso: stage needs the drive keyword (the stage holds the driving "
-                      "springs)");
-  if (idir == 2 && domain->dimension == 2)
-    error->all(FLERR, "Fix eq/meso: dir z is not allowed in a 2d simulation; allowed: x, y");
-  if (group->dynamic[igroup])
-    error->all(FLERR, "Fix eq/meso: group {} is dynamic; blocks need a static group",
-               group->names[igroup]);
-  const bigint nblocks = group->count(igroup);
-  if (nblocks == 0) error->all(FLERR, "Fix eq/meso: group {} has no atoms", group->names[igroup]);
-  // the largest force of a block, N_lambda k_c max(x_s), must be finite
-  constexpr double FMAX = 1e300;
-  if (!(nlambda * kc * threshold.dist->effective_upper() <= FMAX))
-    error->all(FLERR, "Fix eq/meso: Nlambda = {} and kc = {} with threshold {} (x_s up to {:.6g}) "
-                      "would overflow the blocks' forces (Nlambda kc max(x_s) = {:.6g} must stay <= "
-                      "{:g}): lower Nlambda or kc", nlambda, kc, threshold.text,
-               threshold.dist->effective_upper(), nlambda * kc * threshold.dist->effective_upper(),
-               FMAX);
-  xc = threshold.dist->mean();
+  const bigint nblocks = check(a);
+  xc = a.threshold.dist->mean();
   if (window == 0.0) window = xc;
-  stage = stage0;
+  stage = a.stage0;
 
   if (comm->me == 0)
     utils::logmesg(lmp, "fix eq/meso: {} blocks along {} of N_lambda = {} contacts (k_c = {}); "
                         "thresholds {} (<x_s> = {:.6g}); reform {}; grid {:.6g} ({} doubles per "
                         "block); {}{}\n",
-                   nblocks, "xyz"[idir], nlambda, kc, threshold.text, xc, reform.text,
+                   nblocks, "xyz"[idir], nlambda, kc, a.threshold.text, xc, a.reform.text,
                    model->grid(), M_HEAD + model->width(),
                    screen_flag ? fmt::format("screening kappa = {}, lambda_c = {}, rcut = {}",
                                              kappa, lambda_c, rcut)
                                : std::string("no screening"),
                    drive_flag ? fmt::format("; driving springs K = {} to a stage at {} moving at {}",
-                                            kdrive, stage0, vstage)
+                                            kdrive, a.stage0, vstage)
                               : std::string());
 
   restart_global = 1;
@@ -241,9 +125,147 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
   apply(false, nullptr);
 }
 
+// Nlambda kc, then the keywords (messages name the keyword and the
+// allowed values)
+void FixEQMeso::parse(int narg, char **arg, Args &a)
+{
+  if (narg < 7)
+    error->all(FLERR, "Illegal fix eq/meso command: expected 'fix ID group eq/meso Nlambda kc "
+                      "threshold <style> <values> [keyword values ...]'");
+  if (!atom->tag_enable) error->all(FLERR, "Fix eq/meso requires atom IDs (atom_modify id yes)");
+  nlambda = EQUtil::numeric(lmp, "Fix eq/meso: Nlambda", arg[3]);
+  if (!(nlambda > 0.0) || !std::isfinite(nlambda))
+    error->all(FLERR, "Fix eq/meso: Nlambda (contacts per block) must be finite and > 0 (got {})",
+               arg[3]);
+  kc = EQUtil::numeric(lmp, "Fix eq/meso: kc", arg[4]);
+  if (!(kc > 0.0) || !std::isfinite(kc))
+    error->all(FLERR, "Fix eq/meso: kc must be finite and > 0 (got {})", arg[4]);
+
+  const std::vector<std::string> args(arg, arg + narg);
+  const feq::NumberParser number = EQUtil::number_parser(lmp);
+  a.reform.dist = feq::make_delta(0.0);
+  a.reform.text = "delta 0";
+  size_t iarg = 5;
+  try {
+    while (iarg < args.size()) {
+      const std::string &kw = args[iarg++];
+      if (parse_block_keyword(kw, args, iarg, number, a.stage0)) continue;
+      if (kw == "threshold") {
+        a.threshold = feq::parse_distribution(feq::Role::THRESHOLD, args, iarg, number,
+                                              EQUtil::file_loader(lmp));
+        a.have_threshold = true;
+      } else if (kw == "reform") {
+        a.reform = feq::parse_distribution(feq::Role::REFORM, args, iarg, number,
+                                           EQUtil::file_loader(lmp));
+      } else if (kw == "grid") {
+        a.du = feq::parse_finite(args, iarg, "grid du", number);
+        if (!(a.du > 0.0)) throw feq::SpecError("grid: du must be > 0 (got " + args[iarg - 1] + ")");
+      } else if (kw == "crossing") {
+        a.crossing = feq::parse_choice(args, iarg, kw, {"exact", "step"}) == 0
+            ? feq::Crossing::EXACT
+            : feq::Crossing::STEP;
+      } else if (kw == "start") {
+        a.start = feq::parse_choice(args, iarg, kw, {"relaxed", "reform"}) == 0
+            ? feq::MEStart::RELAXED
+            : feq::MEStart::REFORM;
+      } else if (kw == "screen") {
+        parse_screen(args, iarg);
+      } else if (kw == "window") {
+        window = feq::parse_finite(args, iarg, "window w", number);
+        if (!(window > 0.0)) throw feq::SpecError("window: w must be > 0 (got " + args[iarg - 1] + ")");
+      } else if (kw == "check") {
+        if (iarg >= args.size()) throw feq::SpecError("check: missing value (steps, 0: never)");
+        const std::string &tok = args[iarg++];
+        if (!utils::is_integer(tok)) throw feq::SpecError("check: expected an integer, got '" + tok + "'");
+        const bigint n = EQUtil::bnumeric(lmp, "Fix eq/meso check", tok);
+        if (n < 0 || n > MAXSMALLINT)
+          throw feq::SpecError("check: steps must be an integer >= 0 (0: never; got " + tok + ")");
+        check_every = static_cast<int>(n);
+      } else {
+        throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
+      }
+    }
+    if (!a.have_threshold)
+      throw feq::SpecError(std::string(": the threshold keyword is required; allowed styles: ") +
+                           feq::role_styles(feq::Role::THRESHOLD));
+  } catch (const feq::SpecError &e) {
+    const std::string msg = e.what();
+    error->all(FLERR, "Fix eq/meso{}{}", msg.rfind(':', 0) == 0 ? "" : " ", msg);
+  }
+}
+
+// screen kappa lambda_c rcut
+void FixEQMeso::parse_screen(const std::vector<std::string> &args, size_t &iarg)
+{
+  const feq::NumberParser number = EQUtil::number_parser(lmp);
+  kappa = feq::parse_finite(args, iarg, "screen kappa", number);
+  lambda_c = feq::parse_finite(args, iarg, "screen lambda_c", number);
+  rcut = feq::parse_finite(args, iarg, "screen rcut", number);
+  if (!(kappa >= 0.0)) throw feq::SpecError("screen: kappa must be >= 0 (got " + args[iarg - 3] + ")");
+  if (!(lambda_c > 0.0)) throw feq::SpecError("screen: lambda_c must be > 0 (got " + args[iarg - 2] + ")");
+  if (!(rcut > 0.0)) throw feq::SpecError("screen: rcut must be > 0 (got " + args[iarg - 1] + ")");
+  screen_flag = 1;
+}
+
+// the blocks' master equation on its grid (default: 1/8 of the
+// thresholds' standard deviation; a grid the user did not set is not
+// named as the cause when it fails), and what the per-block state
+// depends on (restart check)
+void FixEQMeso::make_model(Args &a)
+{
+  const bool grid_default = a.du == 0.0;
+  const double sd = std::sqrt(std::max(0.0, a.threshold.dist->variance()));
+  if (grid_default) a.du = GRID_DEFAULT_SD * sd;
+  try {
+    if (grid_default && !(a.du > 0.0)) throw feq::SpecError("grid: zero width");
+    model.reset(new feq::MesoModel(a.threshold.dist, a.reform.dist, a.du, a.crossing, a.start));
+  } catch (const feq::SpecError &e) {
+    const std::string why = e.what();
+    if (!grid_default || why.rfind("grid:", 0) != 0) throw;
+    throw feq::SpecError(fmt::format("threshold {}: its standard deviation {:.6g} (from its "
+                                     "moments) gives no usable default grid spacing (1/8 of it, "
+                                     "{:.6g}){}; set one with the grid keyword",
+                                     a.threshold.text, sd, a.du,
+                                     a.du > 0.0 ? " for a block's state" : ""));
+  }
+  shaping.add("Nlambda", EQRecord::number(nlambda));
+  shaping.add("kc", EQRecord::number(kc));
+  shaping.add("threshold", EQRecord::distribution(a.threshold));
+  shaping.add("reform", EQRecord::distribution(a.reform));
+  shaping.add("grid", EQRecord::number(a.du));
+  shaping.add("crossing", a.crossing == feq::Crossing::EXACT ? "exact" : "step");
+  shaping.add("start", a.start == feq::MEStart::RELAXED ? "relaxed" : "reform");
+  shaping.add("dir", std::string(1, "xyz"[idir]));
+}
+
+// what the arguments must satisfy together; returns the number of blocks
+bigint FixEQMeso::check(const Args &a)
+{
+  if (a.stage0 != 0.0 && !drive_flag)
+    error->all(FLERR, "Fix eq/meso: stage needs the drive keyword (the stage holds the driving "
+                      "springs)");
+  if (idir == 2 && domain->dimension == 2)
+    error->all(FLERR, "Fix eq/meso: dir z is not allowed in a 2d simulation; allowed: x, y");
+  if (group->dynamic[igroup])
+    error->all(FLERR, "Fix eq/meso: group {} is dynamic; blocks need a static group",
+               group->names[igroup]);
+  const bigint nblocks = group->count(igroup);
+  if (nblocks == 0) error->all(FLERR, "Fix eq/meso: group {} has no atoms", group->names[igroup]);
+  // the largest force of a block, N_lambda k_c max(x_s), must be finite
+  constexpr double FMAX = 1e300;
+  const double xmax = a.threshold.dist->effective_upper();
+  if (!(nlambda * kc * xmax <= FMAX))
+    error->all(FLERR, "Fix eq/meso: Nlambda = {} and kc = {} with threshold {} (x_s up to {:.6g}) "
+                      "would overflow the blocks' forces (Nlambda kc max(x_s) = {:.6g} must stay <= "
+                      "{:g}): lower Nlambda or kc", nlambda, kc, a.threshold.text, xmax,
+               nlambda * kc * xmax, FMAX);
+  return nblocks;
+}
+
 FixEQMeso::~FixEQMeso()
 {
   delete[] extlist;
+  memory->destroy(out);
 }
 
 int FixEQMeso::setmask()
@@ -354,7 +376,7 @@ void FixEQMeso::apply(bool advance, double **f)
     double *const st = state[i];
     if (st[M_FLAG] == 0.0) init_block(i);
     double *const q = st + M_HEAD;
-    const double X = unwrap.fix(unwrap(i) - st[M_SITE]);
+    const double X = unwrap.displacement(i, st[M_SITE], st[M_DISP]);
     if (!std::isfinite(X))
       error->one(FLERR, "Fix eq/meso: displacement of block {} is {} (numerical instability: check "
                         "the timestep against N_lambda k_c, the coupling and the driving springs)",
@@ -387,6 +409,7 @@ void FixEQMeso::apply(bool advance, double **f)
     st[M_FORCE] = F;
     st[M_FDRIVE] = fd;
     st[M_ATTACHED] = att;
+    publish(i);
     local_sum[S_FORCE] += F;
     local_sum[S_RATE] += st[M_RATE];
     local_sum[S_EPS] += st[M_EPS];
@@ -479,7 +502,7 @@ void FixEQMeso::screening()
   const int d = idir;
   const double cutsq = rcut * rcut * (1.0 + 2e-12);
   const double scale = nlambda * kappa;
-  double pimax = 0.0, dxbig = 0.0;
+  double pimax = 0.0, dxbig = 0.0, eps_sum = 0.0;
   int iworst = -1, ibig = -1, jbig = -1;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -505,7 +528,8 @@ void FixEQMeso::screening()
       pi0 += pi;
       e += pi * cbuf[2 * j];
     }
-    state[i][M_EPS] = xc * e;
+    state[i][M_EPS] = out[i][M_EPS] = xc * e;
+    eps_sum += xc * e;
     if (pi0 > pimax) {
       pimax = pi0;
       iworst = i;
@@ -519,8 +543,12 @@ void FixEQMeso::screening()
                       "more than half the neighbor skin {}: partners may be missing from the "
                       "neighbor list; raise the skin (neighbor SKIN bin) above twice the largest "
                       "difference", atom->tag[ibig], atom->tag[jbig], dxbig, neighbor->skin);
+  // the global mean of eps is that of the per-atom column: the screening
+  // of the next step
+  local_sum[S_EPS] = eps_sum;
   // Pi0 = sum_m Pi_mn < 1, checked after every list build (one reduction)
   pi0_local = pimax;
+  screened = 1;
   if (rebuilt) {
     struct {
       double value;
@@ -601,6 +629,45 @@ void FixEQMeso::unpack_restart(int nlocal, int nth)
   if (state[nlocal][M_FLAG] != 0.0 && !model->valid(state[nlocal] + M_HEAD))
     error->one(FLERR, "Fix eq/meso: the restart data of block {} do not match this fix (thresholds, "
                       "reform or grid differ from the run that wrote them)", atom->tag[nlocal]);
+  publish(nlocal);
+}
+
+/* ----------------------------------------------------------------------
+   the per-atom output: its own nmax x NOUT array (LAMMPS reads a per-atom
+   array with a stride of its number of columns, e.g. in atom-style
+   variables; the state rows are wider), a copy of the state's first
+   columns that follows the state through growth, sorting and exchange
+------------------------------------------------------------------------- */
+
+void FixEQMeso::grow_arrays(int nmax)
+{
+  FixEQPerAtom::grow_arrays(nmax);
+  memory->grow(out, nmax, NOUT, "eq/meso:out");
+  array_atom = out;
+}
+
+void FixEQMeso::copy_arrays(int i, int j, int delflag)
+{
+  FixEQPerAtom::copy_arrays(i, j, delflag);
+  memcpy(out[j], out[i], NOUT * sizeof(double));
+}
+
+void FixEQMeso::set_arrays(int i)
+{
+  FixEQPerAtom::set_arrays(i);
+  memset(out[i], 0, NOUT * sizeof(double));
+}
+
+int FixEQMeso::unpack_exchange(int nlocal, double *buf)
+{
+  const int n = FixEQPerAtom::unpack_exchange(nlocal, buf);
+  publish(nlocal);
+  return n;
+}
+
+void FixEQMeso::publish(int i)
+{
+  memcpy(out[i], state[i], NOUT * sizeof(double));
 }
 
 /* ----------------------------------------------------------------------
@@ -626,7 +693,12 @@ double FixEQMeso::compute_vector(int n)
     case V_STAGE: return drive_flag ? stage : 0.0;
     case V_NORM: return norm_max;
     case V_PI0: {
-      // of this step's distances (reduced on demand)
+      // of this step's distances (reduced on demand); before the first
+      // run there are no neighbor lists to find the partners in
+      if (screen_flag && !screened)
+        error->all(FLERR, "Fix {} eq/meso: the largest Pi0 (global vector entry 9) is not "
+                          "available before the first run (the partners come from its neighbor "
+                          "list): read it after a run or run 0", id);
       double all = 0.0;
       MPI_Allreduce(&pi0_local, &all, 1, MPI_DOUBLE, MPI_MAX, world);
       return all;

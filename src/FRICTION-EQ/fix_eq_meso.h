@@ -26,6 +26,7 @@ FixStyle(eq/meso,FixEQMeso);
 #include "eq_fix_blocks.h"
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace feq {
@@ -50,6 +51,10 @@ class FixEQMeso : public FixEQBlocks {
   double compute_vector(int) override;
   int modify_param(int, char **) override;
   void unpack_restart(int, int) override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int unpack_exchange(int, double *) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
   double memory_usage() override;
@@ -78,6 +83,7 @@ class FixEQMeso : public FixEQBlocks {
   double pi0_max;      // largest sum_m Pi_mn over the blocks at the last list build
   double pi0_local;    // largest sum_m Pi_mn of this rank's blocks at the last step
   bigint list_stamp;   // neighbor->ncalls of the partners (-1: none)
+  int screened;        // the screening has been computed (pi0_local holds)
   int comm_mode;
   std::vector<double> cbuf;    // forward communication: rate and displacement per atom
   // normalization check of the blocks' Q every check_every steps
@@ -87,7 +93,15 @@ class FixEQMeso : public FixEQBlocks {
   enum { S_FORCE, S_RATE, S_EPS, S_DISP, S_FDRIVE, S_COUNT, NSUM };
   double local_sum[NSUM], global_sum[NSUM];
   bigint neval, reduced_eval;
+  // the per-atom output array (a copy of the state's first NOUT columns)
+  double **out;
+  void publish(int i);
 
+  struct Args;
+  void parse(int narg, char **arg, Args &a);
+  void parse_screen(const std::vector<std::string> &args, size_t &iarg);
+  void make_model(Args &a);
+  bigint check(const Args &a);
   void init_block(int i) override;
   void apply(bool advance, double **f);
   void partners();

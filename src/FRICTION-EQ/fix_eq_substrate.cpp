@@ -25,6 +25,7 @@
 #include "update.h"
 #include "utils.h"
 
+#include "eq_keywords.h"
 #include "eq_lammps_util.h"
 #include "eq_record_lammps.h"
 #include "eq_random.h"
@@ -47,157 +48,15 @@ enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE
 
 FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
     FixEQBlocks(lmp, narg, arg), rev_break(0), exact(1), integrator(Integrator::AUTO), window(0.5),
-    dseed(0), njump(0),
-    jump_step(-1), jump_tag(0), jump_size(0.0), neval(0), reduced_eval(-1), chained(0),
-    fsub_valid(0)
+    dseed(0), njump(0), jump_step(-1), jump_tag(0), jump_size(0.0), neval(0), reduced_eval(-1),
+    chained(0), fsub_valid(0)
 {
   sitecol = SITE;
+  dispcol = DISP;
   flagcol = DISORDER;
   for (double &v : global_sum) v = 0.0;
-  if (narg < 5)
-    error->all(FLERR, "Illegal fix eq/substrate command: expected 'fix ID group eq/substrate kc "
-                      "<shape> <values> [keyword values ...]' with shape one of: {}", SHAPES);
-  if (!atom->tag_enable) error->all(FLERR, "Fix eq/substrate requires atom IDs (atom_modify id yes)");
-
-  kc = EQUtil::numeric(lmp, "Fix eq/substrate: kc", arg[3]);
-  if (!(kc >= 0.0) || !std::isfinite(kc))
-    error->all(FLERR, "Fix eq/substrate: kc must be finite and >= 0 (got {})", arg[3]);
-
-  const std::vector<std::string> args(arg, arg + narg);
-  // 1e400 reads as inf: every number of this command must be finite (an
-  // infinite stiffness, velocity or stage makes NaN forces)
-  const feq::NumberParser lmp_number = EQUtil::number_parser(lmp);
-  const feq::NumberParser number = [&](const std::string &tok) -> double {
-    const double v = lmp_number(tok);
-    if (!std::isfinite(v)) throw feq::SpecError("not a finite number");
-    return v;
-  };
-  auto value = [&](size_t &pos, const std::string &what) -> double {
-    if (pos >= args.size()) throw feq::SpecError(what + ": missing value");
-    const std::string &tok = args[pos++];
-    double v;
-    try {
-      v = lmp_number(tok);
-    } catch (const feq::SpecError &) {
-      throw feq::SpecError(what + ": expected a number, got '" + tok + "'");
-    }
-    if (!std::isfinite(v))
-      throw feq::SpecError(what + ": expected a finite number, got '" + tok + "'");
-    return v;
-  };
-
-  size_t iarg = 4;
-  double stage0 = 0.0;
-  try {
-    const std::string &style = args[iarg++];
-    if (style == "sawtooth" || style == "smooth") {
-      const double uc = value(iarg, style + " uc");
-      if (!(uc > 0.0)) throw feq::SpecError(style + ": uc must be > 0 (got " + args[iarg - 1] + ")");
-      shape = style == "sawtooth" ? feq::SubstrateShape::sawtooth(uc) : feq::SubstrateShape::smooth(uc);
-    } else if (style == "table") {
-      if (iarg + 2 > args.size())
-        throw feq::SpecError("table: expected 2 values (file keyword), got " +
-                             std::to_string(args.size() - iarg));
-      const std::string file = args[iarg++], key = args[iarg++];
-      std::vector<double> u, phi;
-      try {
-        feq::read_table_text(EQUtil::file_loader(lmp)(file), file, key, u, phi);
-      } catch (const feq::SpecError &e) {
-        throw feq::SpecError(std::string("table: ") + e.what());
-      }
-      shape = feq::SubstrateShape::table(u, phi, file + " " + key);
-    } else {
-      throw feq::SpecError("unknown shape '" + style + "'; allowed: " + SHAPES);
-    }
-
-    while (iarg < args.size()) {
-      const std::string &kw = args[iarg++];
-      if (parse_block_keyword(kw, args, iarg, value, stage0)) {
-        continue;
-      } else if (kw == "crossing") {
-        if (iarg >= args.size()) throw feq::SpecError("crossing: missing value; allowed: exact, step");
-        const std::string &v = args[iarg++];
-        if (v == "exact") exact = 1;
-        else if (v == "step") exact = 0;
-        else throw feq::SpecError("crossing: unknown value '" + v + "'; allowed: exact, step");
-      } else if (kw == "integrator") {
-        if (iarg >= args.size())
-          throw feq::SpecError("integrator: missing value; allowed: auto, verlet, overdamped");
-        const std::string &v = args[iarg++];
-        if (v == "auto") integrator = Integrator::AUTO;
-        else if (v == "verlet") integrator = Integrator::VERLET;
-        else if (v == "overdamped") integrator = Integrator::OVERDAMPED;
-        else
-          throw feq::SpecError("integrator: unknown value '" + v +
-                               "'; allowed: auto, verlet, overdamped");
-      } else if (kw == "reverse") {
-        if (iarg >= args.size()) throw feq::SpecError("reverse: missing value; allowed: periodic, break");
-        const std::string &v = args[iarg++];
-        if (v == "periodic") rev_break = 0;
-        else if (v == "break") rev_break = 1;
-        else throw feq::SpecError("reverse: unknown value '" + v + "'; allowed: periodic, break");
-      } else if (kw == "disorder") {
-        try {
-          disorder = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number);
-        } catch (const feq::SpecError &e) {
-          // the shared parser names its role 'stiffness': name this keyword;
-          // its numbers went through the finite check above
-          std::string msg = e.what();
-          if (msg.rfind("stiffness", 0) == 0) msg = "disorder" + msg.substr(9);
-          const std::string nonum = ": expected a number for ";
-          const size_t at = msg.find(nonum);
-          if (at != std::string::npos)
-            msg.replace(at, nonum.size(), ": expected a finite number for ");
-          throw feq::SpecError(msg);
-        }
-        if (iarg >= args.size()) throw feq::SpecError("disorder: missing seed after " + disorder.text);
-        const std::string &tok = args[iarg++];
-        if (!utils::is_integer(tok) || (dseed = EQUtil::bnumeric(lmp, "Fix eq/substrate disorder: seed", tok)) <= 0)
-          throw feq::SpecError("disorder: seed must be a positive integer (got '" + tok + "')");
-      } else {
-        throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
-      }
-    }
-  } catch (const feq::SpecError &e) {
-    error->all(FLERR, "Fix eq/substrate {}", e.what());
-  }
-  if (!drive_flag && stage0 != 0.0)
-    error->all(FLERR, "Fix eq/substrate: stage needs the drive keyword (the stage holds the "
-                      "driving springs)");
-  // finite numbers whose energies overflow: the energies are sums over
-  // blocks and periods of the work per period W and of K (u - X_s)^2/2;
-  // each must stay below 1e300 (sawtooth uc 1e300: W = uc^2/2 = inf)
-  const double EMAX = 1e300;
-  if (!(shape.work() <= EMAX)) {
-    if (shape.kind() == feq::SubstrateShape::SAWTOOTH)
-      error->all(FLERR, "Fix eq/substrate sawtooth: uc = {} is too large: the work per period "
-                        "uc^2/2 = {} would overflow the energies; allowed: 0 < uc <= {:.6g}",
-                 arg[5], shape.work(), std::sqrt(2.0 * EMAX));
-    error->all(FLERR, "Fix eq/substrate {}: the work per period W = int_0^uc phi du = {:.6g} would "
-                      "overflow the energies; allowed: W <= {:g}", arg[4], shape.work(), EMAX);
-  }
-  // the largest substrate force k_c d max(phi) and energy per period k_c d W
-  const double dmax = disorder.dist ? disorder.dist->effective_upper() : 1.0;
-  if (!(kc * dmax * shape.max_phi() <= EMAX) || !(kc * dmax * shape.work() <= EMAX))
-    error->all(FLERR, "Fix eq/substrate: kc = {} with the substrate {} (max phi = {:.6g}, work per "
-                      "period {:.6g}){} would overflow the forces or energies (kc d max(phi) and "
-                      "kc d W must stay <= {:g}): lower kc, uc or the disorder",
-               kc, shape.describe(), shape.max_phi(), shape.work(),
-               disorder.dist ? fmt::format(" and disorder up to {:.6g}", dmax) : std::string(),
-               EMAX);
-  if (drive_flag && !(0.5 * kdrive * stage0 * stage0 <= EMAX))
-    error->all(FLERR, "Fix eq/substrate stage: X0 = {} is too large for drive K = {}: the "
-                      "driving-spring energy K X0^2/2 = {:.6g} would overflow the energies; "
-                      "allowed: |X0| <= {:.6g}", stage0, kdrive, 0.5 * kdrive * stage0 * stage0,
-               std::sqrt(2.0 * EMAX / kdrive));
-  if (idir == 2 && domain->dimension == 2)
-    error->all(FLERR, "Fix eq/substrate: dir z is not allowed in a 2d simulation; allowed: x, y");
-  if (group->dynamic[igroup])
-    error->all(FLERR, "Fix eq/substrate: group {} is dynamic; blocks need a static group",
-               group->names[igroup]);
-  const bigint nblocks = group->count(igroup);
-  if (nblocks == 0) error->all(FLERR, "Fix eq/substrate: group {} has no atoms", group->names[igroup]);
-
+  const double stage0 = parse(narg, arg);
+  const bigint nblocks = check(arg, stage0);
   stage = stage0;
   // what the stored blocks are made with (restart check): their k_c, the
   // substrate (the well origins are multiples of its period), the
@@ -238,6 +97,139 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
     if (atom->mask[i] & groupbit) init_block(i);
   // the outputs before the first run: those of the blocks at their sites
   apply(nullptr);
+}
+
+// kc, the shape, then the keywords; returns the stage's X0.  1e400 reads
+// as inf: every number of this command must be finite (an infinite
+// stiffness, velocity or stage makes NaN forces)
+double FixEQSubstrate::parse(int narg, char **arg)
+{
+  if (narg < 5)
+    error->all(FLERR, "Illegal fix eq/substrate command: expected 'fix ID group eq/substrate kc "
+                      "<shape> <values> [keyword values ...]' with shape one of: {}", SHAPES);
+  if (!atom->tag_enable) error->all(FLERR, "Fix eq/substrate requires atom IDs (atom_modify id yes)");
+  kc = EQUtil::numeric(lmp, "Fix eq/substrate: kc", arg[3]);
+  if (!(kc >= 0.0) || !std::isfinite(kc))
+    error->all(FLERR, "Fix eq/substrate: kc must be finite and >= 0 (got {})", arg[3]);
+
+  const std::vector<std::string> args(arg, arg + narg);
+  const feq::NumberParser number = EQUtil::number_parser(lmp);
+  size_t iarg = 4;
+  double stage0 = 0.0;
+  try {
+    parse_shape(args, iarg);
+    while (iarg < args.size()) {
+      const std::string &kw = args[iarg++];
+      if (parse_block_keyword(kw, args, iarg, number, stage0)) continue;
+      if (kw == "crossing") exact = feq::parse_choice(args, iarg, kw, {"exact", "step"}) == 0;
+      else if (kw == "integrator")
+        integrator = static_cast<Integrator>(
+            feq::parse_choice(args, iarg, kw, {"auto", "verlet", "overdamped"}));
+      else if (kw == "reverse")
+        rev_break = feq::parse_choice(args, iarg, kw, {"periodic", "break"});
+      else if (kw == "disorder") parse_disorder(args, iarg);
+      else throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
+    }
+  } catch (const feq::SpecError &e) {
+    error->all(FLERR, "Fix eq/substrate {}", e.what());
+  }
+  return stage0;
+}
+
+// sawtooth uc, smooth uc or table file keyword
+void FixEQSubstrate::parse_shape(const std::vector<std::string> &args, size_t &iarg)
+{
+  const std::string &style = args[iarg++];
+  if (style == "sawtooth" || style == "smooth") {
+    const double uc = feq::parse_finite(args, iarg, style + " uc", EQUtil::number_parser(lmp));
+    if (!(uc > 0.0)) throw feq::SpecError(style + ": uc must be > 0 (got " + args[iarg - 1] + ")");
+    shape = style == "sawtooth" ? feq::SubstrateShape::sawtooth(uc) : feq::SubstrateShape::smooth(uc);
+  } else if (style == "table") {
+    if (iarg + 2 > args.size())
+      throw feq::SpecError("table: expected 2 values (file keyword), got " +
+                           std::to_string(args.size() - iarg));
+    const std::string file = args[iarg++], key = args[iarg++];
+    std::vector<double> u, phi;
+    try {
+      feq::read_table_text(EQUtil::file_loader(lmp)(file), file, key, u, phi);
+    } catch (const feq::SpecError &e) {
+      throw feq::SpecError(std::string("table: ") + e.what());
+    }
+    shape = feq::SubstrateShape::table(u, phi, file + " " + key);
+  } else {
+    throw feq::SpecError("unknown shape '" + style + "'; allowed: " + SHAPES);
+  }
+}
+
+// disorder <distribution> seed: the shared parser names its role
+// 'stiffness'; the messages name this keyword, and its numbers must be
+// finite
+void FixEQSubstrate::parse_disorder(const std::vector<std::string> &args, size_t &iarg)
+{
+  const feq::NumberParser lmp_number = EQUtil::number_parser(lmp);
+  const feq::NumberParser number = [&](const std::string &tok) -> double {
+    const double v = lmp_number(tok);
+    if (!std::isfinite(v)) throw feq::SpecError("not a finite number");
+    return v;
+  };
+  try {
+    disorder = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number);
+  } catch (const feq::SpecError &e) {
+    std::string msg = e.what();
+    if (msg.rfind("stiffness", 0) == 0) msg = "disorder" + msg.substr(9);
+    const std::string nonum = ": expected a number for ";
+    const size_t at = msg.find(nonum);
+    if (at != std::string::npos) msg.replace(at, nonum.size(), ": expected a finite number for ");
+    throw feq::SpecError(msg);
+  }
+  if (iarg >= args.size()) throw feq::SpecError("disorder: missing seed after " + disorder.text);
+  const std::string &tok = args[iarg++];
+  if (!utils::is_integer(tok) ||
+      (dseed = EQUtil::bnumeric(lmp, "Fix eq/substrate disorder: seed", tok)) <= 0)
+    throw feq::SpecError("disorder: seed must be a positive integer (got '" + tok + "')");
+}
+
+// what the arguments must satisfy together (finite energies and forces
+// among them); returns the number of blocks
+bigint FixEQSubstrate::check(char **arg, double stage0)
+{
+  if (!drive_flag && stage0 != 0.0)
+    error->all(FLERR, "Fix eq/substrate: stage needs the drive keyword (the stage holds the "
+                      "driving springs)");
+  // the energies are sums over blocks and periods of the work per period W
+  // and of K (u - X_s)^2/2; each must stay below 1e300 (sawtooth uc 1e300:
+  // W = uc^2/2 = inf)
+  const double EMAX = 1e300;
+  if (!(shape.work() <= EMAX)) {
+    if (shape.kind() == feq::SubstrateShape::SAWTOOTH)
+      error->all(FLERR, "Fix eq/substrate sawtooth: uc = {} is too large: the work per period "
+                        "uc^2/2 = {} would overflow the energies; allowed: 0 < uc <= {:.6g}",
+                 arg[5], shape.work(), std::sqrt(2.0 * EMAX));
+    error->all(FLERR, "Fix eq/substrate {}: the work per period W = int_0^uc phi du = {:.6g} would "
+                      "overflow the energies; allowed: W <= {:g}", arg[4], shape.work(), EMAX);
+  }
+  // the largest substrate force k_c d max(phi) and energy per period k_c d W
+  const double dmax = disorder.dist ? disorder.dist->effective_upper() : 1.0;
+  if (!(kc * dmax * shape.max_phi() <= EMAX) || !(kc * dmax * shape.work() <= EMAX))
+    error->all(FLERR, "Fix eq/substrate: kc = {} with the substrate {} (max phi = {:.6g}, work per "
+                      "period {:.6g}){} would overflow the forces or energies (kc d max(phi) and "
+                      "kc d W must stay <= {:g}): lower kc, uc or the disorder",
+               kc, shape.describe(), shape.max_phi(), shape.work(),
+               disorder.dist ? fmt::format(" and disorder up to {:.6g}", dmax) : std::string(),
+               EMAX);
+  if (drive_flag && !(0.5 * kdrive * stage0 * stage0 <= EMAX))
+    error->all(FLERR, "Fix eq/substrate stage: X0 = {} is too large for drive K = {}: the "
+                      "driving-spring energy K X0^2/2 = {:.6g} would overflow the energies; "
+                      "allowed: |X0| <= {:.6g}", stage0, kdrive, 0.5 * kdrive * stage0 * stage0,
+               std::sqrt(2.0 * EMAX / kdrive));
+  if (idir == 2 && domain->dimension == 2)
+    error->all(FLERR, "Fix eq/substrate: dir z is not allowed in a 2d simulation; allowed: x, y");
+  if (group->dynamic[igroup])
+    error->all(FLERR, "Fix eq/substrate: group {} is dynamic; blocks need a static group",
+               group->names[igroup]);
+  const bigint nblocks = group->count(igroup);
+  if (nblocks == 0) error->all(FLERR, "Fix eq/substrate: group {} has no atoms", group->names[igroup]);
+  return nblocks;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -410,7 +402,7 @@ void FixEQSubstrate::apply(double **f)
     if (!(mask[i] & groupbit)) continue;
     double *const st = state[i];
     if (st[DISORDER] == 0.0) init_block(i);
-    const double u = unwrap.fix(unwrap(i) - st[SITE]);
+    const double u = unwrap.displacement(i, st[SITE], st[DISP]);
     if (!std::isfinite(u))
       error->one(FLERR,
                  "Fix eq/substrate: displacement of block {} is {} (numerical instability: "

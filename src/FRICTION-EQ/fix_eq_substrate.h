@@ -93,6 +93,10 @@ class FixEQSubstrate : public FixEQBlocks {
   int fsub_valid;
   void reduce();
 
+  double parse(int narg, char **arg);
+  void parse_shape(const std::vector<std::string> &args, size_t &iarg);
+  void parse_disorder(const std::vector<std::string> &args, size_t &iarg);
+  bigint check(char **arg, double stage0);
   void init_block(int i) override;
   void apply(double **f);
   double force_window();

@@ -135,7 +135,7 @@ TEST_F(EQMessages, SubnormalNumbersInTables)
 // Kernel tables (pair_coeff ... table) are read by lib/eq_kernel.cpp with a
 // number reader of its own, which takes subnormals silently; enable with
 // the change of read_kernel_table() to feq::parse_number().
-TEST_F(EQMessages, DISABLED_SubnormalNumbersInKernelTables)
+TEST_F(EQMessages, SubnormalNumbersInKernelTables)
 {
   {
     std::ofstream out("eq_snk.table");
@@ -405,7 +405,7 @@ TEST_F(EQLongSliding, ContactsQuasistatic)
 // Enable with the call-site change of the block fixes to
 // EQUtil::Unwrap::displacement() (eq_fix_blocks.cpp, fix_eq_substrate.cpp,
 // fix_eq_meso.cpp).
-TEST_F(EQLongSliding, DISABLED_BlocksSlideFar)
+TEST_F(EQLongSliding, BlocksSlideFar)
 {
   for (const bool meso : {false, true})
     for (const bool tri : {false, true})

@@ -55,11 +55,18 @@ Kernel make_crossover(double ftilde, double lambda)
 }
 
 namespace {
-bool to_double(const std::string &s, double &v)
+// a number of a kernel table, by the rules of threshold and substrate
+// tables (feq::parse_number: the whole token, finite, normal or 0); a
+// subnormal or out-of-range value is named with its cause
+double table_number(const std::string &s, const std::string &where)
 {
-  char *end = nullptr;
-  v = std::strtod(s.c_str(), &end);
-  return end != s.c_str() && *end == '\0' && std::isfinite(v);
+  try {
+    return parse_number(s);
+  } catch (const SpecError &e) {
+    const std::string why = e.what();
+    if (why.rfind("value '", 0) == 0) throw SpecError(where + ": " + why);
+    throw SpecError(where + ": not a finite number");
+  }
 }
 }    // namespace
 
@@ -123,9 +130,9 @@ Kernel read_kernel_table(const std::string &text, const std::string &path,
     if (idx != (long) k.r.size() + 1)
       throw SpecError(where() + ": index " + tok[0] + " out of sequence (expected " +
                       std::to_string(k.r.size() + 1) + ")");
-    double rv, kv, k2v = 0.0;
-    if (!to_double(tok[1], rv) || !to_double(tok[2], kv) || (aniso && !to_double(tok[3], k2v)))
-      throw SpecError(where() + ": not a finite number");
+    const double rv = table_number(tok[1], where());
+    const double kv = table_number(tok[2], where());
+    const double k2v = aniso ? table_number(tok[3], where()) : 0.0;
     if (!(rv > 0.0)) throw SpecError(where() + ": r must be > 0");
     if (!k.r.empty() && !(rv > k.r.back()))
       throw SpecError(where() + ": r must increase strictly");
