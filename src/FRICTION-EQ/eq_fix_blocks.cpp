@@ -28,6 +28,11 @@
 
 using namespace LAMMPS_NS;
 
+namespace {
+// the largest driving force, and its largest rate of growth (per time unit)
+constexpr double DRIVE_MAX = 1e300;
+}    // namespace
+
 FixEQBlocks::FixEQBlocks(LAMMPS *lmp, int narg, char **arg) :
     FixEQPerAtom(lmp, narg, arg), idir(0), sitecol(0), dispcol(0), flagcol(0), ilevel_respa(0), nlevels_respa(0),
     drive_flag(0), kdrive(0.0), vstage(0.0), stage(0.0), nevaluation(0)
@@ -48,6 +53,7 @@ bool FixEQBlocks::parse_block_keyword(const std::string &kw, const std::vector<s
     kdrive = feq::parse_finite(args, iarg, "drive K", number);
     vstage = feq::parse_finite(args, iarg, "drive v", number);
     if (!(kdrive > 0.0)) throw feq::SpecError("drive: K must be > 0 (got " + args[iarg - 2] + ")");
+    check_drive_rate(kdrive, vstage, "drive");
     drive_flag = 1;
     return true;
   }
@@ -56,6 +62,25 @@ bool FixEQBlocks::parse_block_keyword(const std::string &kw, const std::vector<s
     return true;
   }
   return false;
+}
+
+// the driving force grows at K v: that product of finite numbers must be
+// finite (at most 1e300 force per time unit)
+void FixEQBlocks::check_drive_rate(double k, double v, const char *what)
+{
+  if (!(k * std::fabs(v) <= DRIVE_MAX))
+    throw feq::SpecError(fmt::format("{}: K = {} and v = {} make the driving force grow at K |v| = "
+                                     "{:.6g} per time unit, beyond {:g}: lower K or v", what, k, v,
+                                     k * std::fabs(v), DRIVE_MAX));
+}
+
+// the driving force K (X_s - X) of a block at its site must be finite
+void FixEQBlocks::check_stage(double stage0)
+{
+  if (drive_flag && !(kdrive * std::fabs(stage0) <= DRIVE_MAX))
+    error->all(FLERR, "Fix {} {} stage: X0 = {} with drive K = {} gives a driving force K X0 = "
+                      "{:.6g} beyond {:g}: lower K or X0", id, style, stage0, kdrive,
+               kdrive * std::fabs(stage0), DRIVE_MAX);
 }
 
 void FixEQBlocks::init_blocks()
@@ -189,6 +214,11 @@ int FixEQBlocks::modify_velocity(int narg, char **arg)
   const double value = EQUtil::numeric(lmp, fmt::format("Fix_modify {} velocity", id), arg[1]);
   if (!std::isfinite(value))
     error->all(FLERR, "Fix_modify {} velocity: v must be finite (got {})", id, arg[1]);
+  try {
+    check_drive_rate(kdrive, value, "velocity");
+  } catch (const feq::SpecError &e) {
+    error->all(FLERR, "Fix_modify {} {}", id, e.what());
+  }
   vstage = value;
   return 2;
 }
@@ -213,6 +243,10 @@ void FixEQBlocks::write_restart(FILE *fp)
 void FixEQBlocks::restart(char *buf)
 {
   const std::vector<double> list = EQRecord::read(lmp, this, buf, 3, shaping, "blocks");
+  if (!std::isfinite(list[0]) || !std::isfinite(list[1]) || !(list[2] == 0.0 || list[2] == 1.0))
+    error->all(FLERR, "Fix {} {}: the restart file's record of this fix is unusable: stage {}, "
+                      "velocity {}, drive flag {} (a corrupt file)", id, style, list[0], list[1],
+               list[2]);
   const bool file_drive = list[2] != 0.0;
   if (!drive_flag) {
     if (file_drive && comm->me == 0)

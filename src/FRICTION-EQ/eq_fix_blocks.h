@@ -78,6 +78,9 @@ class FixEQBlocks : public FixEQPerAtom, public EQCoordinateSource {
                            size_t &iarg, const feq::NumberParser &number, double &stage0);
   // r-RESPA levels and the field (from the derived init())
   void init_blocks();
+  // K v and K X0 of the driving springs must be finite (errors name what)
+  void check_drive_rate(double k, double v, const char *what);
+  void check_stage(double stage0);
   // fix_modify ID velocity v; returns the number of arguments used (0: not it)
   int modify_velocity(int narg, char **arg);
   // displacement u = x - site of every local block (NaN: not a block)

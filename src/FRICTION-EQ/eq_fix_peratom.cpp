@@ -142,6 +142,13 @@ void FixEQPerAtom::unpack_restart(int nlocal, int nth)
                std::max(nstore - m, 0));
   }
   memcpy(state[nlocal], &rec[m + 1], ncol * sizeof(double));
+  // a garbled value: every value of the state is finite
+  for (int k = 0; k < ncol; k++)
+    if (!std::isfinite(state[nlocal][k]))
+      error->one(FLERR, "Fix {} {}: the restart file's per-atom data of atom {} is garbled: value {} "
+                        "of this fix's record is {} (a corrupt file)",
+                 id, style, atom->tag[nlocal], k + 1, state[nlocal][k]);
+  check_restored(nlocal);
 }
 
 int FixEQPerAtom::size_restart(int /*nlocal*/)

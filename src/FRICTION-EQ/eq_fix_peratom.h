@@ -33,6 +33,9 @@ class FixEQPerAtom : public Fix {
  protected:
   int ncol;          // doubles per atom
   double **state;    // nmax x ncol, also array_atom
+  // a row restored from a restart file (finite values): what the fix
+  // checks of its meaning (an error naming the atom when it is off)
+  virtual void check_restored(int /*i*/) {}
   // allocate for the current atoms, register the callbacks, set the
   // per-atom output (noutput columns, the first ones of the state) and
   // the restart/exchange flags; rows of the current atoms are zeroed

@@ -103,7 +103,7 @@ struct FixEQContacts::Args {
 
 FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
     FixEQPerAtom(lmp, narg, arg), break_tol(0.0), interacting(0), avfp(nullptr), av_flag(0),
-    rounds_last(0), nevaluation(0), nversion(0), chg_from(-1)
+    rounds_last(0), ran(0), nevaluation(0), nversion(0), chg_from(-1)
 {
   EQCite::add(lmp);
   name = fmt::format("fix {} eq/contacts", id);
@@ -378,6 +378,7 @@ void FixEQContacts::min_pre_force(int /*vflag*/)
 
 void FixEQContacts::setup(int vflag)
 {
+  ran = 1;
   if (!field) {
     mark_departed();
     // no interaction in this run: a field left by an earlier run with
@@ -395,6 +396,7 @@ void FixEQContacts::setup(int vflag)
 
 void FixEQContacts::min_setup(int /*vflag*/)
 {
+  ran = 1;
   if (field) {
     apply_forces();
     return;
@@ -690,14 +692,34 @@ void FixEQContacts::reduce()
   reduced_valid = 1;
 }
 
+/* ----------------------------------------------------------------------
+   before the first run the outputs follow the positions (displace_atoms
+   after the fix's definition): the contacts' stretches and sums now
+------------------------------------------------------------------------- */
+
+void FixEQContacts::outputs_before_run()
+{
+  if (ran) return;
+  const EQUtil::Unwrap unwrap(atom, domain, idir);
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    double *st = state[i];
+    if ((mask[i] & groupbit) && st[CS_THRESHOLD] > 0.0)
+      st[CS_STRETCH] = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
+  }
+  tally(nullptr);
+}
+
 double FixEQContacts::compute_scalar()
 {
+  outputs_before_run();
   reduce();
   return global_sum[SUM_ENERGY];
 }
 
 double FixEQContacts::compute_vector(int n)
 {
+  outputs_before_run();
   switch (n) {
     case 0: reduce(); return global_sum[SUM_FORCE];
     case 1: reduce(); return global_sum[SUM_BREAKS];
@@ -737,6 +759,11 @@ void FixEQContacts::write_restart(FILE *fp)
 void FixEQContacts::restart(char *buf)
 {
   const std::vector<double> list = EQRecord::read(lmp, this, buf, 2, shaping, "contacts");
+  const double big = 9007199254740992.0;    // 2^53
+  if (!(list[0] >= 0.0 && list[0] <= big && list[0] == std::floor(list[0])) ||
+      !(list[1] >= 1.0 && list[1] <= big && list[1] == std::floor(list[1])))
+    error->all(FLERR, "Fix {} eq/contacts: the restart file's record of this fix is unusable: "
+                      "breaks {} and seed {} are not counts (a corrupt file)", id, list[0], list[1]);
   breaks_offset = static_cast<bigint>(list[0]);
   local_breaks_total = 0;
   if (static_cast<bigint>(list[1]) != seed && comm->me == 0)
@@ -744,6 +771,38 @@ void FixEQContacts::restart(char *buf)
                    "Fix eq/contacts: seed {} differs from the restart file's seed {}; the break "
                    "sequence does not continue that of the original run",
                    seed, static_cast<bigint>(list[1]));
+}
+
+/* ----------------------------------------------------------------------
+   a contact restored from a restart file: a threshold that is 0 (not
+   formed), -1 (detached for good) or positive with a positive stiffness,
+   a break count, and a stretch that is its position minus its anchor
+   (the stored anchor belongs to this atom's position)
+------------------------------------------------------------------------- */
+
+void FixEQContacts::check_restored(int i)
+{
+  const double *st = state[i];
+  const double th = st[CS_THRESHOLD], nb = st[CS_NBREAK];
+  std::string why;
+  if (!(th == 0.0 || th == -1.0 || (th > 0.0 && st[CS_STIFFNESS] > 0.0)))
+    why = fmt::format("threshold {} with stiffness {}", th, st[CS_STIFFNESS]);
+  else if (!(nb >= 0.0 && nb <= 9007199254740992.0 && nb == std::floor(nb)))
+    why = fmt::format("break count {}", nb);
+  else if (th > 0.0) {
+    const EQUtil::Unwrap unwrap(atom, domain, idir);
+    const double xu = unwrap(i);
+    const double s = unwrap.stretch(xu - st[CS_ANCHOR]);
+    // the rounding of the position and the stretch (a garbled anchor is
+    // not a scale of the tolerance)
+    const double tol = 1e-9 * (1.0 + std::fabs(xu) + std::fabs(st[CS_STRETCH]));
+    if (!(std::fabs(s - st[CS_STRETCH]) <= tol))
+      why = fmt::format("stretch {} where the position and the anchor {} give {}", st[CS_STRETCH],
+                        st[CS_ANCHOR], s);
+  }
+  if (!why.empty())
+    error->one(FLERR, "Fix {} eq/contacts: the restart file's contact {} is garbled: {} (a "
+                      "corrupt file, or one written for other positions)", id, atom->tag[i], why);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -57,6 +57,11 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   double memory_usage() override;
   int modify_param(int, char **) override;
 
+ protected:
+  void check_restored(int i) override;
+
+ public:
+
   // EQCoordinateSource: the contacts' stretches
   const char *eq_name() const override { return name.c_str(); }
   int eq_instance() const override { return instance_me; }
@@ -86,6 +91,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   FILE *avfp;                      // avalanche records (rank 0), or nullptr
   int av_flag;                     // avalanche records requested
   int rounds_last;                 // rounds of the last step's avalanche
+  int ran;                         // a run or minimization has set this fix up
 
   // the coordinates this fix owns for the field: the stretches of the
   // local contacts at the current evaluation (NaN: not a contact), the
@@ -120,6 +126,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void apply(bool allow_breaks);
   void apply_forces();
   void tally(double **f);
+  void outputs_before_run();
   void record_avalanche(bigint size, bigint trigger, int rounds);
   void reduce();
 };

@@ -72,7 +72,7 @@ struct FixEQMeso::Args {
 FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
     FixEQBlocks(lmp, narg, arg), nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
     lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), pi0_local(0.0),
-    list_stamp(-1), screened(0), comm_mode(0), check_every(CHECK_DEFAULT), norm_max(0.0),
+    list_stamp(-1), screened(0), ran(0), restored(0), comm_mode(0), check_every(CHECK_DEFAULT), norm_max(0.0),
     neval(0), reduced_eval(-1), out(nullptr)
 {
   sitecol = M_SITE;
@@ -233,8 +233,6 @@ void FixEQMeso::make_model(Args &a)
   shaping.add("threshold", EQRecord::distribution(a.threshold));
   shaping.add("reform", EQRecord::distribution(a.reform));
   shaping.add("grid", EQRecord::number(a.du));
-  shaping.add("crossing", a.crossing == feq::Crossing::EXACT ? "exact" : "step");
-  shaping.add("start", a.start == feq::MEStart::RELAXED ? "relaxed" : "reform");
   shaping.add("dir", std::string(1, "xyz"[idir]));
 }
 
@@ -244,6 +242,7 @@ bigint FixEQMeso::check(const Args &a)
   if (a.stage0 != 0.0 && !drive_flag)
     error->all(FLERR, "Fix eq/meso: stage needs the drive keyword (the stage holds the driving "
                       "springs)");
+  check_stage(a.stage0);
   if (idir == 2 && domain->dimension == 2)
     error->all(FLERR, "Fix eq/meso: dir z is not allowed in a 2d simulation; allowed: x, y");
   if (group->dynamic[igroup])
@@ -322,6 +321,7 @@ void FixEQMeso::init_block(int i)
 
 void FixEQMeso::setup(int vflag)
 {
+  ran = 1;
   if (utils::strmatch(update->integrate_style, "^verlet")) {
     post_force(vflag);
   } else {
@@ -334,6 +334,7 @@ void FixEQMeso::setup(int vflag)
 
 void FixEQMeso::min_setup(int /*vflag*/)
 {
+  ran = 1;
   apply(false, atom->f);
 }
 
@@ -618,18 +619,35 @@ void FixEQMeso::check_normalization()
 
 void FixEQMeso::unpack_restart(int nlocal, int nth)
 {
-  double **extra = atom->extra;
-  int m = 0;
-  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  if (static_cast<int>(extra[nlocal][m]) != ncol + 1)
-    error->one(FLERR, "Fix eq/meso: the restart file holds {} values per block, this fix {}: "
-                      "re-specify it with the thresholds, reform and grid of the run that wrote it",
-               static_cast<int>(extra[nlocal][m]) - 1, ncol);
   FixEQPerAtom::unpack_restart(nlocal, nth);
-  if (state[nlocal][M_FLAG] != 0.0 && !model->valid(state[nlocal] + M_HEAD))
-    error->one(FLERR, "Fix eq/meso: the restart data of block {} do not match this fix (thresholds, "
-                      "reform or grid differ from the run that wrote them)", atom->tag[nlocal]);
   publish(nlocal);
+  restored = 1;
+}
+
+// a block restored from a restart file: set up (flag 1) with a valid
+// master-equation state of this fix's model and a displacement that is
+// its position minus its site, or not set up (flag 0)
+void FixEQMeso::check_restored(int i)
+{
+  const double *st = state[i];
+  std::string why;
+  if (st[M_FLAG] != 0.0 && st[M_FLAG] != 1.0)
+    why = fmt::format("set-up flag {}", st[M_FLAG]);
+  else if (st[M_FLAG] == 1.0 && !model->valid(st + M_HEAD))
+    why = "its distribution of stretches is not a valid state of this fix's model (thresholds, "
+          "reform or grid differ from the run that wrote it, or the data are garbled)";
+  else if (st[M_FLAG] == 1.0) {
+    const EQUtil::Unwrap unwrap(atom, domain, idir);
+    const double xu = unwrap(i);
+    const double X = xu - st[M_SITE];
+    const double tol = 1e-9 * (1.0 + std::fabs(xu) + std::fabs(st[M_DISP]));
+    if (!(std::fabs(unwrap.stretch(X - st[M_DISP])) <= tol))
+      why = fmt::format("displacement {} where the position and the site {} give {}", st[M_DISP],
+                        st[M_SITE], X);
+  }
+  if (!why.empty())
+    error->one(FLERR, "Fix {} eq/meso: the restart file's block {} is garbled: {}", id,
+               atom->tag[i], why);
 }
 
 /* ----------------------------------------------------------------------
@@ -681,14 +699,23 @@ void FixEQMeso::reduce()
   reduced_eval = neval;
 }
 
+// before the first run the outputs follow the positions (displace_atoms
+// after the definition); blocks restored from a restart file keep theirs
+void FixEQMeso::outputs_before_run()
+{
+  if (!ran && !restored) apply(false, nullptr);
+}
+
 double FixEQMeso::compute_scalar()
 {
+  outputs_before_run();
   reduce();
   return global_sum[S_FORCE];
 }
 
 double FixEQMeso::compute_vector(int n)
 {
+  outputs_before_run();
   switch (n) {
     case V_STAGE: return drive_flag ? stage : 0.0;
     case V_NORM: return norm_max;

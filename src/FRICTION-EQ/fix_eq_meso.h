@@ -55,6 +55,11 @@ class FixEQMeso : public FixEQBlocks {
   void copy_arrays(int, int, int) override;
   void set_arrays(int) override;
   int unpack_exchange(int, double *) override;
+
+ protected:
+  void check_restored(int i) override;
+
+ public:
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
   double memory_usage() override;
@@ -84,6 +89,9 @@ class FixEQMeso : public FixEQBlocks {
   double pi0_local;    // largest sum_m Pi_mn of this rank's blocks at the last step
   bigint list_stamp;   // neighbor->ncalls of the partners (-1: none)
   int screened;        // the screening has been computed (pi0_local holds)
+  int ran;             // a run or minimization has set this fix up
+  int restored;        // blocks came from a restart file
+  void outputs_before_run();
   int comm_mode;
   std::vector<double> cbuf;    // forward communication: rate and displacement per atom
   // normalization check of the blocks' Q every check_every steps

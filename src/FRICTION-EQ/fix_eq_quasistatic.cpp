@@ -136,6 +136,9 @@ void FixEQQuasistatic::check_integrators()
 EQEventSource *FixEQQuasistatic::contacts_now()
 {
   EQEventSource *c = EQLink::live_fix(contacts, modify);
+  if (!contacts)
+    error->all(FLERR, "Fix {} eq/quasistatic was defined during a run (run N pre no every M) and "
+                      "not set up with its fix eq/contacts {}: use pre yes", id, contacts_id);
   if (!c)
     error->all(FLERR, "Fix {} eq/quasistatic: {}, the contacts it drives, was removed or replaced "
                       "during the run (e.g. unfix in run N pre no every M); use pre yes, or define "

@@ -49,7 +49,7 @@ enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE
 FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
     FixEQBlocks(lmp, narg, arg), rev_break(0), exact(1), integrator(Integrator::AUTO), window(0.5),
     dseed(0), njump(0), jump_step(-1), jump_tag(0), jump_size(0.0), neval(0), reduced_eval(-1),
-    chained(0), fsub_valid(0)
+    chained(0), fsub_valid(0), ran(0), restored(0)
 {
   sitecol = SITE;
   dispcol = DISP;
@@ -62,8 +62,10 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
   // substrate (the well origins are multiples of its period), the
   // quenched factors, the direction and the meaning of the well origins
   shaping.add("kc", EQRecord::number(kc));
-  shaping.add("shape", fmt::format("{}|{:.17g}|{:.17g}|{:.17g}", shape.describe(), shape.period(),
-                                   shape.work(), shape.max_phi()));
+  shaping.add("shape", shape.kind() == feq::SubstrateShape::TABLE ? shape.describe()
+                       : std::string(arg[4]));
+  shaping.add("uc", fmt::format("{:.17g}|{:.17g}|{:.17g}", shape.period(), shape.work(),
+                                shape.max_phi()));
   shaping.add("disorder", disorder.dist ? EQRecord::distribution(disorder) + "|" +
                                               std::to_string(dseed)
                                         : std::string("none"));
@@ -222,6 +224,7 @@ bigint FixEQSubstrate::check(char **arg, double stage0)
                       "driving-spring energy K X0^2/2 = {:.6g} would overflow the energies; "
                       "allowed: |X0| <= {:.6g}", stage0, kdrive, 0.5 * kdrive * stage0 * stage0,
                std::sqrt(2.0 * EMAX / kdrive));
+  check_stage(stage0);
   if (idir == 2 && domain->dimension == 2)
     error->all(FLERR, "Fix eq/substrate: dir z is not allowed in a 2d simulation; allowed: x, y");
   if (group->dynamic[igroup])
@@ -311,6 +314,7 @@ double FixEQSubstrate::force_window()
 
 void FixEQSubstrate::setup(int vflag)
 {
+  ran = 1;
   if (utils::strmatch(update->integrate_style, "^verlet"))
     post_force(vflag);
   else {
@@ -322,6 +326,7 @@ void FixEQSubstrate::setup(int vflag)
 
 void FixEQSubstrate::min_setup(int /*vflag*/)
 {
+  ran = 1;
   apply(atom->f);
 }
 
@@ -504,12 +509,14 @@ void FixEQSubstrate::post_run()
 
 double FixEQSubstrate::compute_scalar()
 {
+  outputs_before_run();
   reduce();
   return global_sum[S_ESUB] + global_sum[S_EDRIVE];
 }
 
 double FixEQSubstrate::compute_vector(int n)
 {
+  outputs_before_run();
   switch (n) {
     case V_F: return drive_flag ? kdrive * stage : 0.0;
     case V_STAGE: return drive_flag ? stage : 0.0;
@@ -580,6 +587,12 @@ int FixEQSubstrate::modify_param(int narg, char **arg)
     const double value = EQUtil::numeric(lmp, fmt::format("Fix_modify {} kc", id), arg[2]);
     if (!(value >= 0.0) || !std::isfinite(value))
       error->all(FLERR, "Fix_modify {} kc: value must be finite and >= 0 (got {})", id, arg[2]);
+    const double dmax = disorder.dist ? disorder.dist->effective_upper() : 1.0;
+    if (!(value * dmax * shape.max_phi() <= 1e300) || !(value * dmax * shape.work() <= 1e300))
+      error->all(FLERR, "Fix_modify {} kc: kc = {} with the substrate {} (max phi = {:.6g}, work "
+                        "per period {:.6g}) would overflow the forces or energies (kc d max(phi) "
+                        "and kc d W must stay <= 1e300)", id, value, shape.describe(),
+                 shape.max_phi(), shape.work());
     const int jbit = group->bitmask[jgroup];
     const int *mask = atom->mask;
     for (int i = 0; i < atom->nlocal; i++)
@@ -608,4 +621,37 @@ void FixEQSubstrate::unpack_restart(int nlocal, int nth)
 {
   FixEQPerAtom::unpack_restart(nlocal, nth);
   fsub_valid = 1;
+  restored = 1;
+}
+
+// before the first run the outputs follow the positions and k_c
+// (displace_atoms, fix_modify kc after the definition); blocks restored
+// from a restart file keep the forces of the run that wrote them
+void FixEQSubstrate::outputs_before_run()
+{
+  if (!ran && !restored) apply(nullptr);
+}
+
+// a block restored from a restart file: k_c >= 0, a positive quenched
+// factor (0: not set up), and a displacement that is its position minus
+// its site
+void FixEQSubstrate::check_restored(int i)
+{
+  const double *st = state[i];
+  if (st[DISORDER] == 0.0) return;    // not set up yet
+  std::string why;
+  if (!(st[KC] >= 0.0) || !(st[DISORDER] > 0.0))
+    why = fmt::format("k_c {} with factor {}", st[KC], st[DISORDER]);
+  else {
+    const EQUtil::Unwrap unwrap(atom, domain, idir);
+    const double xu = unwrap(i);
+    const double u = xu - st[SITE];
+    const double tol = 1e-9 * (1.0 + std::fabs(xu) + std::fabs(st[DISP]));
+    if (!(std::fabs(unwrap.stretch(u - st[DISP])) <= tol))
+      why = fmt::format("displacement {} where the position and the site {} give {}", st[DISP],
+                        st[SITE], u);
+  }
+  if (!why.empty())
+    error->one(FLERR, "Fix {} eq/substrate: the restart file's block {} is garbled: {} (a corrupt "
+                      "file, or one written for other positions)", id, atom->tag[i], why);
 }

@@ -47,6 +47,11 @@ class FixEQSubstrate : public FixEQBlocks {
   int modify_param(int, char **) override;
   void unpack_restart(int, int) override;
 
+ protected:
+  void check_restored(int i) override;
+
+ public:
+
 
   // columns of the per-atom state (also the per-atom output array):
   // displacement u, substrate force -k_c d phi, driving-spring force
@@ -91,6 +96,9 @@ class FixEQSubstrate : public FixEQBlocks {
   // the stored substrate forces (FSUB) are those of the stored
   // displacements (DISP) and the current k_c (see apply())
   int fsub_valid;
+  int ran;         // a run or minimization has set this fix up
+  int restored;    // blocks came from a restart file
+  void outputs_before_run();
   void reduce();
 
   double parse(int narg, char **arg);

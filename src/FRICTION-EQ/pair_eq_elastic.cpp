@@ -67,6 +67,9 @@ constexpr double NOT_COUPLED = std::numeric_limits<double>::quiet_NaN();
 // distances within this relative margin of the cutoff count as inside, so
 // a lattice shell at exactly rcut = lambda_c is included
 constexpr double CUT_MARGIN = 1.0e-12;
+// two coupled atoms closer than this fraction of their cutoff are at one
+// place (k ~ 1/r: 1e10 times its value at the cutoff)
+constexpr double OVERLAP = 1.0e-10;
 // default number of field updates between two drift checks
 constexpr int CHECK_DEFAULT = 1000;
 // atoms count as moved rigidly when their displacements since the last
@@ -614,7 +617,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
       if (site_distance) del[d] -= qi - qj;
       const double rsq = del[0] * del[0] + del[1] * del[1] + del[2] * del[2];
       if (rsq > cutsq_in[itype][jtype]) continue;
-      if (!(rsq > 0.0)) overlap_error(i, j);
+      if (!(rsq > OVERLAP * OVERLAP * cutsq_in[itype][jtype])) overlap_error(i, j);
       const double k = factor * kval(itype, jtype, rsq, del);
       pj.push_back(j);
       pk.push_back(k);
@@ -689,9 +692,10 @@ void PairEQElastic::skin_error(int i, int j, double du)
 void PairEQElastic::overlap_error(int i, int j)
 {
   error->one(FLERR,
-             "Pair eq/elastic: atoms {} and {} of {} are at the same {} (r = 0, where the kernel "
-             "k(r) diverges): two {} at one place; check the positions (e.g. change_box ... remap "
-             "with fix move, which puts its atoms back at the positions it stored)",
+             "Pair eq/elastic: atoms {} and {} of {} are at the same {} (closer than 1e-10 of the "
+             "cutoff, where the kernel k(r) ~ 1/r diverges): two {} at one place; check the "
+             "positions (e.g. create_atoms on top of another, or change_box ... remap with fix "
+             "move, which puts its atoms back at the positions it stored)",
              atom->tag[i], atom->tag[j], source_label, site_distance ? "site" : "position",
              site_distance ? "blocks" : "contacts");
 }

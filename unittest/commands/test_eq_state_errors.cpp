@@ -252,7 +252,7 @@ TEST_F(EQState, BlocksRestartWithOtherArguments)
   };
   const Change changes[] = {
       {"2.0 sawtooth 1.0 disorder uniform 0.8 1.2 7", "kc"},
-      {"1.0 sawtooth 1.5 disorder uniform 0.8 1.2 7", "shape"},
+      {"1.0 sawtooth 1.5 disorder uniform 0.8 1.2 7", "uc"},
       {"1.0 smooth 1.0 disorder uniform 0.8 1.2 7", "shape"},
       {"1.0 sawtooth 1.0 disorder uniform 0.8 1.2 8", "disorder"},
       {"1.0 sawtooth 1.0", "disorder"},
@@ -302,6 +302,13 @@ TEST_F(EQState, MesoRestartWithOtherArguments)
                      " differs from that of the run that wrote the restart file.*",
                  command(std::string("fix b all eq/meso ") + c.fix););
   }
+  // crossing and start do not shape the stored blocks
+  HIDE_OUTPUT([&] {
+    command("clear");
+    command("read_restart eq_state_m.restart");
+    command("fix b all eq/meso 100 1.0 threshold uniform 0.75 1.25 grid 0.02 crossing step start "
+            "reform");
+  });
   std::remove("eq_state_m.restart");
 }
 

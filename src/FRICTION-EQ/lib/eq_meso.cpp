@@ -428,9 +428,23 @@ void MesoModel::init(double *s, double X0) const
   }
 }
 
+// a state of this model: its fingerprint, finite values, whole-number
+// indices within range, masses in [0, 1] that add up to 1
 bool MesoModel::valid(const double *s) const
 {
-  return s[TAG] == tag;
+  if (s[TAG] != tag) return false;
+  for (int k = 0; k < nwidth; ++k)
+    if (!std::isfinite(s[k])) return false;
+  const double big = 4503599627370496.0;    // 2^52: the index slots stay exact
+  for (const int k : {BASE, GH, JLO, JHI})
+    if (!(std::fabs(s[k]) <= big) || s[k] != std::floor(s[k])) return false;
+  if (s[JLO] <= s[JHI] && !(s[JHI] - s[JLO] < double(ncap))) return false;
+  if (!(s[HABS] >= s[XABS])) return false;
+  const double tol = 1e-9;
+  for (int i = 0; i < ncap; ++i)
+    if (!(s[NHEAD + i] >= 0.0 && s[NHEAD + i] <= 1.0 + tol)) return false;
+  if (!(s[DETACHED] >= 0.0 && s[DETACHED] <= 1.0 + tol)) return false;
+  return normalization_error(s) <= tol;
 }
 
 /* ---------------------------------------------------------------------- */
