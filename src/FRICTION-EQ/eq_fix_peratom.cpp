@@ -6,8 +6,11 @@
 #include "eq_fix_peratom.h"
 
 #include "atom.h"
+#include "domain.h"
 #include "error.h"
 #include "memory.h"
+
+#include "eq_lammps_util.h"
 
 #include <algorithm>
 #include <cmath>
@@ -149,6 +152,17 @@ void FixEQPerAtom::unpack_restart(int nlocal, int nth)
                         "of this fix's record is {} (a corrupt file)",
                  id, style, atom->tag[nlocal], k + 1, state[nlocal][k]);
   check_restored(nlocal);
+}
+
+void FixEQPerAtom::check_reach(int i, int dir, double ref, const char *what)
+{
+  const EQUtil::Unwrap unwrap(atom, domain, dir);
+  const double xu = unwrap(i);
+  const double reach = 1e9 * (1.0 + std::fabs(xu) + domain->prd[dir]);
+  if (!(std::fabs(xu - ref) <= reach))
+    error->one(FLERR, "Fix {} {}: the restart file's {} of atom {} is {}, more than {:.3g} from "
+                      "the atom (at {}): a garbled value (a corrupt file)", id, style, what,
+               atom->tag[i], ref, reach, xu);
 }
 
 int FixEQPerAtom::size_restart(int /*nlocal*/)

@@ -36,6 +36,11 @@ class FixEQPerAtom : public Fix {
   // a row restored from a restart file (finite values): what the fix
   // checks of its meaning (an error naming the atom when it is off)
   virtual void check_restored(int /*i*/) {}
+  // a reference position (anchor, site) restored for atom i at most 1e9
+  // times the scale of its coordinates away from it along dir: beyond
+  // that, differences with it lose their digits (a garbled value); an
+  // error names what it is
+  void check_reach(int i, int dir, double ref, const char *what);
   // allocate for the current atoms, register the callbacks, set the
   // per-atom output (noutput columns, the first ones of the state) and
   // the restart/exchange flags; rows of the current atoms are zeroed

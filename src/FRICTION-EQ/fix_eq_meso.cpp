@@ -625,8 +625,7 @@ void FixEQMeso::unpack_restart(int nlocal, int nth)
 }
 
 // a block restored from a restart file: set up (flag 1) with a valid
-// master-equation state of this fix's model and a displacement that is
-// its position minus its site, or not set up (flag 0)
+// master-equation state of this fix's model, or not set up (flag 0)
 void FixEQMeso::check_restored(int i)
 {
   const double *st = state[i];
@@ -636,18 +635,10 @@ void FixEQMeso::check_restored(int i)
   else if (st[M_FLAG] == 1.0 && !model->valid(st + M_HEAD))
     why = "its distribution of stretches is not a valid state of this fix's model (thresholds, "
           "reform or grid differ from the run that wrote it, or the data are garbled)";
-  else if (st[M_FLAG] == 1.0) {
-    const EQUtil::Unwrap unwrap(atom, domain, idir);
-    const double xu = unwrap(i);
-    const double X = xu - st[M_SITE];
-    const double tol = 1e-9 * (1.0 + std::fabs(xu) + std::fabs(st[M_DISP]));
-    if (!(std::fabs(unwrap.stretch(X - st[M_DISP])) <= tol))
-      why = fmt::format("displacement {} where the position and the site {} give {}", st[M_DISP],
-                        st[M_SITE], X);
-  }
   if (!why.empty())
     error->one(FLERR, "Fix {} eq/meso: the restart file's block {} is garbled: {}", id,
                atom->tag[i], why);
+  if (st[M_FLAG] == 1.0) check_reach(i, idir, st[M_SITE], "site");
 }
 
 /* ----------------------------------------------------------------------

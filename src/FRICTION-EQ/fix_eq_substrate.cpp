@@ -632,26 +632,16 @@ void FixEQSubstrate::outputs_before_run()
   if (!ran && !restored) apply(nullptr);
 }
 
-// a block restored from a restart file: k_c >= 0, a positive quenched
-// factor (0: not set up), and a displacement that is its position minus
-// its site
+// a block restored from a restart file: k_c >= 0 and a positive quenched
+// factor (0: not set up).  (Its site is not compared with its position:
+// the atoms may have been displaced between the last run and
+// write_restart.)
 void FixEQSubstrate::check_restored(int i)
 {
   const double *st = state[i];
   if (st[DISORDER] == 0.0) return;    // not set up yet
-  std::string why;
   if (!(st[KC] >= 0.0) || !(st[DISORDER] > 0.0))
-    why = fmt::format("k_c {} with factor {}", st[KC], st[DISORDER]);
-  else {
-    const EQUtil::Unwrap unwrap(atom, domain, idir);
-    const double xu = unwrap(i);
-    const double u = xu - st[SITE];
-    const double tol = 1e-9 * (1.0 + std::fabs(xu) + std::fabs(st[DISP]));
-    if (!(std::fabs(unwrap.stretch(u - st[DISP])) <= tol))
-      why = fmt::format("displacement {} where the position and the site {} give {}", st[DISP],
-                        st[SITE], u);
-  }
-  if (!why.empty())
-    error->one(FLERR, "Fix {} eq/substrate: the restart file's block {} is garbled: {} (a corrupt "
-                      "file, or one written for other positions)", id, atom->tag[i], why);
+    error->one(FLERR, "Fix {} eq/substrate: the restart file's block {} is garbled: k_c {} with "
+                      "factor {} (a corrupt file)", id, atom->tag[i], st[KC], st[DISORDER]);
+  check_reach(i, idir, st[SITE], "site");
 }

@@ -70,6 +70,9 @@ constexpr double CUT_MARGIN = 1.0e-12;
 // two coupled atoms closer than this fraction of their cutoff are at one
 // place (k ~ 1/r: 1e10 times its value at the cutoff)
 constexpr double OVERLAP = 1.0e-10;
+// a change of a coordinate by more than this many times its new size
+// is not followed incrementally (see scatter_exact())
+constexpr double CHANGE_MAX = 1.0e6;
 // default number of field updates between two drift checks
 constexpr int CHECK_DEFAULT = 1000;
 // atoms count as moved rigidly when their displacements since the last
@@ -518,8 +521,8 @@ void PairEQElastic::refresh()
     EQChangeSet set;
     const bool one_set = src->source_changes(version_seen, set);
     version_seen = version;
-    if (one_set) scatter(set);
-    else recompute(src);    // the set of coupled atoms changed
+    if (one_set && scatter_exact(set)) scatter(set);
+    else recompute(src);    // the set of coupled atoms changed, or changes too large
   }
 }
 
@@ -855,6 +858,19 @@ void PairEQElastic::drift_check(EQCoordinateSource *src)
     drift_max = std::fmax(drift_max, std::fabs(hold[i] - h[i]));
     hscale_max = std::fmax(hscale_max, std::fmax(std::fabs(h[i]), ksum[i] * std::fabs(q[i])));
   }
+}
+
+// a change set the incremental update follows to rounding: every change
+// at most CHANGE_MAX times the size of the coordinate it leads to (a
+// stretch of 1e300 that breaks to 0.3 would leave 1e284 of rounding in
+// the partners' h: recomputed instead)
+bool PairEQElastic::scatter_exact(const EQChangeSet &set) const
+{
+  for (int m = 0; m < set.n; m++) {
+    const int i = set.list[m];
+    if (!(std::fabs(set.dq[i]) <= CHANGE_MAX * (1.0 + std::fabs(q[i] + set.dq[i])))) return false;
+  }
+  return true;
 }
 
 /* ----------------------------------------------------------------------
