@@ -44,6 +44,12 @@
 namespace LAMMPS_NS {
 namespace EQCompat {
 
+// pair_style hybrid (and hybrid/scaled) before 4 Jul 2026 copies a
+// sub-style's extra single() values with a loop that never ends
+// (PairHybrid::copy_svector: 'for (l = 0; single_extra; ++l)'): compute
+// pair/local with p1, p2, ... crashes.  A sub-style there offers none.
+constexpr bool HYBRID_SVECTOR_BUG = FEQ_LAMMPS_VERSION < 20260704;
+
 // a full neighbor list for a pair style (every pair i-j on both owners)
 inline void request_full_list(Neighbor *neighbor, Pair *pair, int instance_me)
 {

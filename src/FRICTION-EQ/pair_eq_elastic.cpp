@@ -96,6 +96,12 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
   single_enable = 1;
   single_extra = 7;
   svector = new double[single_extra];
+  // a sub-style of pair hybrid (the pair style being defined) of a LAMMPS
+  // whose hybrid would crash on the extra values offers none
+  if (EQCompat::HYBRID_SVECTOR_BUG && force->pair_style &&
+      utils::strmatch(force->pair_style, "^hybrid") &&
+      !utils::strmatch(force->pair_style, "^hybrid/overlay"))
+    single_extra = 0;
   restartinfo = 1;
   reinitflag = 0;    // see reinit()
   writedata = 0;
@@ -1034,7 +1040,7 @@ double PairEQElastic::single(int i, int j, int itype, int jtype, double rsq,
                              double /*factor_coul*/, double factor_lj, double &fforce)
 {
   fforce = 0.0;
-  for (int k = 0; k < single_extra; k++) svector[k] = 0.0;
+  for (int k = 0; k < 7; k++) svector[k] = 0.0;
   if (!key_set || i >= nmax || j >= nmax) return 0.0;
   // ghosts: q = x - w (current for all ghosts after compute(); the field
   // keeps q itself current only for the ghosts of its lists)
