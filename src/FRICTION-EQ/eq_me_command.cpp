@@ -62,7 +62,7 @@ void EQMe::command(int narg, char **arg)
       bad = e.what();
     }
   }
-  int nbad = (int) bad.size();
+  int nbad = static_cast<int>(bad.size());
   MPI_Bcast(&nbad, 1, MPI_INT, 0, world);
   if (nbad > 0) {
     bad.resize(nbad);

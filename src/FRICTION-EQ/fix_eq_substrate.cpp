@@ -335,9 +335,9 @@ void FixEQSubstrate::setup(int vflag)
   if (utils::strmatch(update->integrate_style, "^verlet"))
     post_force(vflag);
   else {
-    ((Respa *) update->integrate)->copy_flevel_f(ilevel_respa);
+    static_cast<Respa *>(update->integrate)->copy_flevel_f(ilevel_respa);
     post_force_respa(vflag, ilevel_respa, 0);
-    ((Respa *) update->integrate)->copy_f_flevel(ilevel_respa);
+    static_cast<Respa *>(update->integrate)->copy_f_flevel(ilevel_respa);
   }
 }
 
@@ -505,16 +505,17 @@ void FixEQSubstrate::post_run()
     struct {
       double step;
       int rank;
-    } mine{njump ? (double) jump_step : HUGE_VAL, comm->me}, first{0.0, 0};
+    } mine{njump ? static_cast<double>(jump_step) : HUGE_VAL, comm->me}, first{0.0, 0};
     MPI_Allreduce(&mine, &first, 1, MPI_DOUBLE_INT, MPI_MINLOC, world);
-    double info[3] = {(double) jump_tag, jump_size, (double) jump_step};
+    double info[3] = {static_cast<double>(jump_tag), jump_size, static_cast<double>(jump_step)};
     MPI_Bcast(info, 3, MPI_DOUBLE, first.rank, world);
     if (comm->me == 0)
       error->warning(FLERR,
                      "Fix eq/substrate: {} moves of a block by more than half the substrate "
                      "period {} in one step in this run (the first: block {} by {} at step {}): "
                      "the time step is too large to resolve F_s",
-                     total, shape.period(), (tagint) info[0], info[1], (bigint) info[2]);
+                     total, shape.period(), static_cast<tagint>(info[0]), info[1],
+                     static_cast<bigint>(info[2]));
   }
   njump = 0;
   jump_step = -1;

@@ -212,7 +212,7 @@ void PairEQElastic::settings(int narg, char **arg)
     if (n < 0 || n > MAXSMALLINT)
       error->all(FLERR, "Pair style eq/elastic: check must be an integer >= 0 (0: never; got {})",
                  arg[2]);
-    check_every = (int) n;
+    check_every = static_cast<int>(n);
   }
 
   // reset explicit cutoffs that were set from the previous global cutoff
@@ -1074,9 +1074,9 @@ void PairEQElastic::reinit()
 void *PairEQElastic::extract(const char *str, int &dim)
 {
   dim = 2;
-  if (strcmp(str, "ftilde") == 0) return (void *) ftilde;
-  if (strcmp(str, "lambda_c") == 0) return (void *) lambda;
-  if (strcmp(str, "cut") == 0) return (void *) cut;
+  if (strcmp(str, "ftilde") == 0) return static_cast<void *>(ftilde);
+  if (strcmp(str, "lambda_c") == 0) return static_cast<void *>(lambda);
+  if (strcmp(str, "cut") == 0) return static_cast<void *>(cut);
   return nullptr;
 }
 
@@ -1135,8 +1135,8 @@ void PairEQElastic::write_restart(FILE *fp)
       fwrite(&setflag[i][j], sizeof(int), 1, fp);
       if (!setflag[i][j]) continue;
       const feq::Kernel &k = kernels[kidx[i][j]];
-      const int kind = (int) k.kind;
-      const int n = (int) k.r.size();
+      const int kind = static_cast<int>(k.kind);
+      const int n = static_cast<int>(k.r.size());
       const int aniso = k.anisotropic() ? 1 : 0;
       fwrite(&kind, sizeof(int), 1, fp);
       fwrite(&k.ftilde, sizeof(double), 1, fp);
@@ -1195,7 +1195,7 @@ void PairEQElastic::read_restart(FILE *fp)
       }
       k.source = k.kind == feq::Kernel::TABLE ? "table (restart)" : "crossover";
       kernels.push_back(k);
-      kidx[i][j] = (int) kernels.size() - 1;
+      kidx[i][j] = static_cast<int>(kernels.size()) - 1;
       ftilde[i][j] = k.ftilde;
       lambda[i][j] = k.lambda;
     }
@@ -1207,7 +1207,7 @@ double PairEQElastic::memory_usage()
 {
   double bytes = Pair::memory_usage();
   bytes += 9.0 * nmax * sizeof(double);
-  bytes += (double) pj.capacity() * sizeof(int) + pk.capacity() * sizeof(double);
-  bytes += (double) first.capacity() * sizeof(int);
+  bytes += static_cast<double>(pj.capacity()) * sizeof(int) + pk.capacity() * sizeof(double);
+  bytes += static_cast<double>(first.capacity()) * sizeof(int);
   return bytes;
 }

@@ -130,7 +130,7 @@ int main(int argc, char **argv)
       else if (k == "dense_limit") {
         const long n = integer(k, val());
         if (n < 1) throw UsageError("keyword dense_limit: must be >= 1");
-        o.dense_limit = (size_t) n;
+        o.dense_limit = static_cast<size_t>(n);
       }
       else if (k == "rmax") rmax = integer(k, val());
       else if (k == "kc") {

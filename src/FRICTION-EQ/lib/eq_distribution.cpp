@@ -674,7 +674,7 @@ void read_table_text(const std::string &text, const std::string &path, const std
   const int nline = lineno;
   x.clear();
   p.clear();
-  while ((long) x.size() < n && std::getline(in, line)) {
+  while (static_cast<long>(x.size()) < n && std::getline(in, line)) {
     ++lineno;
     std::istringstream ws(line);
     std::string a, b, c, extra;
@@ -684,7 +684,7 @@ void read_table_text(const std::string &text, const std::string &path, const std
     if (!integer(a, idx)) break;    // the next section begins: too few points
     if (!(ws >> b >> c) || (ws >> extra))
       throw SpecError(where() + ": expected 'index x P(x)'");
-    if (idx != (long) x.size() + 1)
+    if (idx != static_cast<long>(x.size()) + 1)
       throw SpecError(where() + ": index " + a + " out of sequence (expected " +
                       std::to_string(x.size() + 1) + ")");
     double xv, pv;
@@ -697,7 +697,7 @@ void read_table_text(const std::string &text, const std::string &path, const std
     x.push_back(xv);
     p.push_back(pv);
   }
-  if ((long) x.size() < n)
+  if (static_cast<long>(x.size()) < n)
     throw SpecError("table file '" + path + "' section '" + keyword + "': expected " +
                     std::to_string(n) + " points, found " + std::to_string(x.size()));
   // a point line after the last one: the section has more points than its

@@ -161,9 +161,9 @@ void check_exact(const MEJob &job)
                     "hi - lo not too small: lower xmax");
   // the table: a point every 0.01 in X (run_me_job), work sampled at up to
   // 100 of them
-  const size_t stride = std::max<size_t>(1, (size_t) std::llround(0.01 / job.opt.dx));
+  const size_t stride = std::max<size_t>(1, static_cast<size_t>(std::llround(0.01 / job.opt.dx)));
   const double points = std::floor(X / (stride * job.opt.dx) + 0.5) + 1.0;
-  const int samples = (int) std::min(points, 100.0);
+  const int samples = static_cast<int>(std::min(points, 100.0));
   double sum = 0.0;
   for (int i = 1; i <= samples; ++i) sum += exact.work(X * i / samples);
   const double total = sum * points / samples;
@@ -460,7 +460,7 @@ MEReport run_me_job(const MEJob &job, bool write_files)
     }
     double maxerr = 0.0;
     // the exact solution costs ~1e4 times more per point: every 0.01 in X
-    const size_t stride = std::max<size_t>(1, (size_t) std::llround(0.01 / opt.dx));
+    const size_t stride = std::max<size_t>(1, static_cast<size_t>(std::llround(0.01 / opt.dx)));
     for (size_t k = 0; k < res.X.size(); k += stride) {
       const double m1 = exact.mean_stretch(res.X[k]);
       if (write_files)

@@ -69,15 +69,16 @@ struct Registrar {
   }
   template <class T> void fix(const char *name, const char *info) const
   {
-    add("fix", name, info, nullptr, (lammpsplugin_factory2 *) &fix_creator<T>);
+    add("fix", name, info, nullptr, reinterpret_cast<lammpsplugin_factory2 *>(&fix_creator<T>));
   }
   template <class T> void pair(const char *name, const char *info) const
   {
-    add("pair", name, info, (lammpsplugin_factory1 *) &pair_creator<T>, nullptr);
+    add("pair", name, info, reinterpret_cast<lammpsplugin_factory1 *>(&pair_creator<T>), nullptr);
   }
   template <class T> void command(const char *name, const char *info) const
   {
-    add("command", name, info, (lammpsplugin_factory1 *) &command_creator<T>, nullptr);
+    add("command", name, info, reinterpret_cast<lammpsplugin_factory1 *>(&command_creator<T>),
+        nullptr);
   }
 };
 }    // namespace
