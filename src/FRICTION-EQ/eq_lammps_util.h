@@ -63,7 +63,7 @@ namespace EQUtil {
   //
   // LAMMPS keeps each image count in IMGBITS bits (IMGMAX = 512 unless
   // built with -DLAMMPS_BIGBIG): after IMGMAX periodic crossings the count
-  // wraps and the unwrapped coordinate along dir jumps by wrap_length() =
+  // wraps and the unwrapped coordinate along dir jumps by
   // 2 IMGMAX box lengths (the box vector along dir: also in triclinic
   // boxes, where a wrap of a perpendicular count would move it by 2 IMGMAX
   // tilts; that takes 512 box lengths of drift across dir and is not
@@ -104,10 +104,6 @@ namespace EQUtil {
       }
       return u;
     }
-    // 2 IMGMAX box lengths along dir: the jump of a wrap (0: dir is not
-    // periodic, no wrap)
-    double wrap_length() const { return wrapfix ? wrap : 0.0; }
-
    private:
     Domain *domain;
     double **x;

@@ -115,12 +115,7 @@ class ContactModel {
   }
 
   bool reforms() const { return reform.dist != nullptr; }
-  bool exact_crossing() const { return exact; }
   bool reform_as_force() const { return reform_force; }
-  double kc() const { return k0; }
-  const DistributionSpec &threshold_spec() const { return threshold; }
-  const DistributionSpec &reform_spec() const { return reform; }
-  const DistributionSpec &stiffness_spec() const { return stiffness; }
 
   // at most this many breaks of one contact within one step
   static constexpr int MAX_BREAKS_PER_STEP = 1000;

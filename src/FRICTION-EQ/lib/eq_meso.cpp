@@ -711,11 +711,6 @@ double MesoModel::detached(const double *s) const
   return s[DETACHED];
 }
 
-double MesoModel::broken(const double *s) const
-{
-  return s[LASTB];
-}
-
 double MesoModel::rate(const double *s) const
 {
   return s[LASTDX] != 0.0 ? s[LASTB] / std::fabs(s[LASTDX]) : 0.0;

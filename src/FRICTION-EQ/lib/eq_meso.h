@@ -191,8 +191,8 @@ class MesoModel {
   // move the block from its stored X to X1 with screening factor eps
   // (>= 0); returns the probability mass broken in this move (broken
   // contacts per contact).  X1 == stored X: returns 0 and leaves the state
-  // untouched bitwise (broken() and rate() keep describing the last move
-  // that changed X).  Throws std::invalid_argument for a non-finite X1 or
+  // untouched bitwise (rate() keeps describing the last move that
+  // changed X).  Throws std::invalid_argument for a non-finite X1 or
   // eps < 0 (errors of the caller, not of the input).
   double advance(double *state, double X1, double eps = 0.0) const;
 
@@ -203,7 +203,6 @@ class MesoModel {
   double attached(const double *state) const;        // int Q du (grid + held)
   double held(const double *state) const;            // held part of attached()
   double detached(const double *state) const;        // broken for good (R null)
-  double broken(const double *state) const;          // mass broken in the last move
   double rate(const double *state) const;            // Gamma = broken / |dX| of the last move
                                                      // (0 after a move that stays below H)
   // |attached + detached - 1| summed from the arrays, O(width)
