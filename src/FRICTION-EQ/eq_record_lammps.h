@@ -70,16 +70,15 @@ namespace EQRecord {
     try {
       return feq::unpack_record(reinterpret_cast<const double *>(buf), nvalues, sig);
     } catch (const feq::RecordError &e) {
-      const std::string why = e.what();
-      if (why.rfind("keyword:", 0) == 0) {
-        const std::string kw = why.substr(8);
+      const std::string &kw = e.keyword();
+      if (!kw.empty()) {
         lmp->error->all(FLERR, "Fix {} {}: {} differs from that of the run that wrote the restart "
                                "file: the stored {} were made with the other {}; re-specify {} as "
                                "in that run (or define the fix under another ID to start afresh)",
                         fix->id, fix->style, kw, stored, kw, kw);
       }
       lmp->error->all(FLERR, "Fix {} {}: the restart file's record of this fix is unusable: {}",
-                      fix->id, fix->style, why);
+                      fix->id, fix->style, e.what());
     }
     return {};
   }

@@ -102,8 +102,7 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
   try {
     make_model(a);
   } catch (const feq::SpecError &e) {
-    const std::string msg = e.what();
-    error->all(FLERR, "Fix eq/meso{}{}", msg.rfind(':', 0) == 0 ? "" : " ", msg);
+    error->all(FLERR, "Fix eq/meso {}", e.what());
   }
   const bigint nblocks = check(a);
   xc = a.threshold.dist->mean();
@@ -202,13 +201,12 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
         throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
       }
     }
-    if (!a.have_threshold)
-      throw feq::SpecError(std::string(": the threshold keyword is required; allowed styles: ") +
-                           feq::role_styles(feq::Role::THRESHOLD));
   } catch (const feq::SpecError &e) {
-    const std::string msg = e.what();
-    error->all(FLERR, "Fix eq/meso{}{}", msg.rfind(':', 0) == 0 ? "" : " ", msg);
+    error->all(FLERR, "Fix eq/meso {}", e.what());
   }
+  if (!a.have_threshold)
+    error->all(FLERR, "Fix eq/meso: the threshold keyword is required; allowed styles: {}",
+               feq::role_styles(feq::Role::THRESHOLD));
 }
 
 // screen kappa lambda_c rcut
@@ -234,11 +232,10 @@ void FixEQMeso::make_model(Args &a)
   const double sd = std::sqrt(std::max(0.0, a.threshold.dist->variance()));
   if (grid_default) a.du = GRID_DEFAULT_SD * sd;
   try {
-    if (grid_default && !(a.du > 0.0)) throw feq::SpecError("grid: zero width");
+    if (grid_default && !(a.du > 0.0)) throw feq::GridError("grid: zero width");
     model.reset(new feq::MesoModel(a.threshold.dist, a.reform.dist, a.du, a.crossing, a.start));
-  } catch (const feq::SpecError &e) {
-    const std::string why = e.what();
-    if (!grid_default || why.rfind("grid:", 0) != 0) throw;
+  } catch (const feq::GridError &) {
+    if (!grid_default) throw;
     throw feq::SpecError(fmt::format("threshold {}: its standard deviation {:.6g} (from its "
                                      "moments) gives no usable default grid spacing (1/8 of it, "
                                      "{:.6g}){}; set one with the grid keyword",

@@ -180,9 +180,8 @@ void FixEQSubstrate::parse_shape(const std::vector<std::string> &args, size_t &i
   }
 }
 
-// disorder <distribution> seed: the shared parser names its role
-// 'stiffness'; the messages name this keyword, and its numbers must be
-// finite
+// disorder <distribution> seed: the shared parser (role stiffness) with
+// messages that name this keyword, and numbers that must be finite
 void FixEQSubstrate::parse_disorder(const std::vector<std::string> &args, size_t &iarg)
 {
   const feq::NumberParser lmp_number = EQUtil::number_parser(lmp);
@@ -191,16 +190,8 @@ void FixEQSubstrate::parse_disorder(const std::vector<std::string> &args, size_t
     if (!std::isfinite(v)) throw feq::SpecError("not a finite number");
     return v;
   };
-  try {
-    disorder = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number);
-  } catch (const feq::SpecError &e) {
-    std::string msg = e.what();
-    if (msg.rfind("stiffness", 0) == 0) msg = "disorder" + msg.substr(9);
-    const std::string nonum = ": expected a number for ";
-    const size_t at = msg.find(nonum);
-    if (at != std::string::npos) msg.replace(at, nonum.size(), ": expected a finite number for ");
-    throw feq::SpecError(msg);
-  }
+  disorder = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number, {},
+                                     feq::SpecWording("disorder", "a finite number"));
   if (iarg >= args.size()) throw feq::SpecError("disorder: missing seed after " + disorder.text);
   const std::string &tok = args[iarg++];
   if (!utils::is_integer(tok) ||

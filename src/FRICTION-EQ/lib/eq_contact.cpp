@@ -56,7 +56,7 @@ ContactModel::ContactModel(double kc, uint64_t seed_, const DistributionSpec &th
   check_reform(*threshold.dist, reform);
   reform_point = reform.dist && reform.dist->is_point();
   reform_value = reform.dist ? reform.dist->mean() : 0.0;
-  stiffness_const = stiffness.text == "constant";
+  stiffness_const = stiffness.constant();
   // re-forming stretches are drawn from R truncated to |r| < max x_s (a
   // weight below REFORM_BEYOND_TOLERANCE, checked above), so that no draw
   // can abort a run

@@ -79,9 +79,9 @@ double table_number(const std::string &s, const std::string &where)
 {
   try {
     return parse_number(s);
-  } catch (const SpecError &e) {
-    const std::string why = e.what();
-    if (why.rfind("value '", 0) == 0) throw SpecError(where + ": " + why);
+  } catch (const NumberError &e) {
+    throw SpecError(where + ": " + e.what());
+  } catch (const SpecError &) {
     throw SpecError(where + ": not a finite number");
   }
 }

@@ -88,7 +88,7 @@ std::string format(const char *fmt, ...)
 bool exact_applies(const MEJob &job)
 {
   const Distribution &Pc = *job.threshold.dist;
-  return job.threshold.text.rfind("uniform", 0) == 0 && job.reform.dist &&
+  return Pc.kind() == DistKind::UNIFORM && job.reform.dist &&
       job.reform.dist->is_point() && job.reform.dist->mean() == 0.0 &&
       job.opt.start == MEStart::RELAXED && job.opt.crossing == Crossing::EXACT && Pc.lower() > 0.0;
 }
@@ -378,7 +378,7 @@ MEReport run_me_job(const MEJob &job, bool write_files)
   // per-contact stiffness k_i = kc f: F scales with <f>, the spread of one
   // contact's force is sqrt(<f^2><x^2> - <f>^2<x>^2)
   const double f1 = job.stiffness.dist->mean(), f2 = job.stiffness.dist->second_moment();
-  if (job.stiffness.text != "constant") {
+  if (!job.stiffness.constant()) {
     for (size_t k = 0; k < res.F.size(); ++k) {
       const double x1 = res.F[k], x2 = res.sd[k] * res.sd[k] + x1 * x1;
       res.F[k] = f1 * x1;
@@ -417,7 +417,7 @@ MEReport run_me_job(const MEJob &job, bool write_files)
   t += format("  threshold    %s   <x_s> = %.10g, sd = %.6g\n", job.threshold.text.c_str(),
               Pc.mean(), v["threshold_sd"]);
   t += format("  reform       %s\n", job.reform.text.c_str());
-  if (job.stiffness.text != "constant")
+  if (!job.stiffness.constant())
     t += format("  stiffness    %s: <k_i> = %.10g k_c (F below includes it)\n",
                 job.stiffness.text.c_str(), f1);
   t += format("  grid         dx = %g, X in [0, %g], %zu stretch points, start %s, crossing %s%s\n",

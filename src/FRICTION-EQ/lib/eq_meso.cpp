@@ -110,14 +110,14 @@ MesoModel::MesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_, Crossi
   if (!(Pc->lower() >= 0.0))
     throw SpecError("threshold " + Pc->describe() + ": breaking thresholds must be >= 0");
   if (!(du > 0.0) || !std::isfinite(du))
-    throw SpecError("grid: spacing must be a finite number > 0 (got " + fmt(du) + ")");
+    throw GridError("grid: spacing must be a finite number > 0 (got " + fmt(du) + ")");
   const double sd = std::sqrt(std::max(0.0, Pc->variance()));
   if (!(sd > 0.0))
-    throw SpecError("grid: threshold " + Pc->describe() +
+    throw GridError("grid: threshold " + Pc->describe() +
                     " has zero width; the anchor grid needs a spread of thresholds");
   const double dmax = max_grid(*Pc);
   if (du > dmax)
-    throw SpecError("grid: spacing " + fmt(du) + " is too coarse for threshold " + Pc->describe() +
+    throw GridError("grid: spacing " + fmt(du) + " is too coarse for threshold " + Pc->describe() +
                     " (sd " + fmt(sd) + "); the largest allowed value is " +
                     fmt(round_down4(dmax)) + " (" + fmt(MESO_GRID_SD_FRACTION) + " sd)");
   if (R) check_reform(*Pc, {R, R->describe()});
@@ -138,7 +138,7 @@ MesoModel::MesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_, Crossi
     if (!std::isfinite(rsup_hi)) rsup_hi = R->isf(TAIL);
   }
   if (width_bound(du) > double(MESO_MAX_WIDTH))
-    throw SpecError("grid: spacing " + fmt(du) + " needs about " + fmt(width_bound(du)) +
+    throw GridError("grid: spacing " + fmt(du) + " needs about " + fmt(width_bound(du)) +
                     " doubles per block (limit " + std::to_string(MESO_MAX_WIDTH) +
                     "); use a spacing >= " + fmt(min_grid()));
 

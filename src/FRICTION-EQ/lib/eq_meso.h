@@ -169,12 +169,21 @@ namespace feq {
 constexpr double MESO_GRID_SD_FRACTION = 0.25;
 constexpr int MESO_MAX_WIDTH = 65536;
 
+// the grid spacing du is unusable for the thresholds (its message starts
+// with "grid:"); fix eq/meso names its default grid as the cause when the
+// user did not set one
+class GridError : public SpecError {
+ public:
+  using SpecError::SpecError;
+};
+
 class MesoModel {
  public:
   // Pc: breaking thresholds; R: re-forming stretches (nullptr: contacts
   // never re-form); du: anchor grid spacing (keyword 'grid').
-  // Throws SpecError for a coarse or absurdly fine grid, for a missing or
-  // negative threshold distribution, for re-forming stretches beyond the
+  // Throws GridError for a coarse or absurdly fine grid (and for
+  // thresholds of zero width), SpecError for a missing or negative
+  // threshold distribution, for re-forming stretches beyond the
   // thresholds, and for start REFORM without R.
   MesoModel(DistributionPtr Pc, DistributionPtr R, double du,
             Crossing crossing = Crossing::EXACT, MEStart start = MEStart::RELAXED);

@@ -39,13 +39,23 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace feq {
 
+// an unusable record; keyword(): the keyword whose signature differs when
+// only that is off (else empty)
 class RecordError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit RecordError(const std::string &what, std::string keyword = std::string()) :
+      std::runtime_error(what), kw(std::move(keyword))
+  {
+  }
+  const std::string &keyword() const { return kw; }
+
+ private:
+  std::string kw;
 };
 
 // "FEQE" and the layout version
@@ -83,7 +93,7 @@ inline std::vector<double> pack_record(const std::vector<double> &values, const 
 // the values of a record with nvalues values and a signature of
 // sig.hashes.size() keywords; RecordError when it is not such a record,
 // naming the first keyword whose hash differs when only that is off
-// (what() is then "keyword:<name>")
+// (its keyword())
 inline std::vector<double> unpack_record(const double *buf, int nvalues, const Signature &sig)
 {
   if (buf[0] != RECORD_MAGIC || buf[1] != RECORD_FORMAT)
@@ -100,7 +110,8 @@ inline std::vector<double> unpack_record(const double *buf, int nvalues, const S
                       std::to_string(ns) + " are expected (garbled, or written by another "
                       "version)");
   for (int k = 0; k < ns; k++)
-    if (s[1 + k] != sig.hashes[k]) throw RecordError("keyword:" + sig.keywords[k]);
+    if (s[1 + k] != sig.hashes[k])
+      throw RecordError("the record's " + sig.keywords[k] + " differs", sig.keywords[k]);
   return std::vector<double>(buf + 3, buf + 3 + nvalues);
 }
 
