@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package for LAMMPS: per-atom state of the package's fixes
    (see eq_fix_peratom.h)
 ------------------------------------------------------------------------- */
@@ -52,7 +69,7 @@ void FixEQPerAtom::peratom_setup(int ncol_, int noutput)
 
 double FixEQPerAtom::memory_usage()
 {
-  return (double) atom->nmax * ncol * sizeof(double);
+  return static_cast<double>(atom->nmax) * ncol * sizeof(double);
 }
 
 void FixEQPerAtom::grow_arrays(int nmax)
@@ -99,7 +116,7 @@ namespace {
 // a record length for a message: an integer when it is one
 std::string length_text(double c)
 {
-  if (c == std::floor(c) && std::fabs(c) < 1e15) return std::to_string((long long) c);
+  if (c == std::floor(c) && std::fabs(c) < 1e15) return std::to_string(static_cast<long long>(c));
   char buf[32];
   snprintf(buf, sizeof(buf), "%.10g", c);
   return buf;
@@ -113,7 +130,7 @@ void FixEQPerAtom::unpack_restart(int nlocal, int nth)
   // a record's first value is its length (that value included): a whole
   // number >= 1 that fits in what is left of the atom's stored values
   auto length_ok = [](double c, int room) {
-    return c >= 1.0 && c <= (double) room && c == std::floor(c);
+    return c >= 1.0 && c <= static_cast<double>(room) && c == std::floor(c);
   };
   int m = 0;
   for (int i = 0; i < nth; i++) {
@@ -129,7 +146,7 @@ void FixEQPerAtom::unpack_restart(int nlocal, int nth)
     m += static_cast<int>(c);
   }
   const double c = m < nstore ? rec[m] : 0.0;
-  if (m >= nstore || c != (double) (ncol + 1) || ncol + 1 > nstore - m) {
+  if (m >= nstore || c != static_cast<double>(ncol + 1) || ncol + 1 > nstore - m) {
     if (m < nstore && length_ok(c, nstore - m))
       error->one(FLERR,
                  "Fix {} {}: the restart file holds {} values per atom for this fix, it expects "

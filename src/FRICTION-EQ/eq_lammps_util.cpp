@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package for LAMMPS: shared helpers (see eq_lammps_util.h)
 ------------------------------------------------------------------------- */
 
@@ -55,18 +72,19 @@ bigint EQUtil::bnumeric(LAMMPS *lmp, const std::string &what, const std::string 
   const long long v = std::strtoll(tok.c_str(), &end, 10);
   if (end == tok.c_str() || *end != '\0')
     lmp->error->all(FLERR, "{}: expected an integer, got '{}'", what, tok);
-  if (errno == ERANGE || v > (long long) MAXBIGINT || v < -(long long) MAXBIGINT)
+  if (errno == ERANGE || v > static_cast<long long>(MAXBIGINT) ||
+      v < -static_cast<long long>(MAXBIGINT))
     lmp->error->all(FLERR, "{}: integer {} is out of range", what, tok);
-  return (bigint) v;
+  return static_cast<bigint>(v);
 }
 
 namespace {
 void bcast_string(std::string &s, MPI_Comm world)
 {
-  long n = (long) s.size();
+  long n = static_cast<long>(s.size());
   MPI_Bcast(&n, 1, MPI_LONG, 0, world);
   s.resize(n);
-  if (n > 0) MPI_Bcast(&s[0], (int) n, MPI_CHAR, 0, world);
+  if (n > 0) MPI_Bcast(&s[0], static_cast<int>(n), MPI_CHAR, 0, world);
 }
 }    // namespace
 

@@ -1,4 +1,21 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package for LAMMPS: helpers shared by the package's styles
    to feed the LAMMPS-free kernels (number parsing with LAMMPS' rules,
    table files read once and broadcast, unwrapped coordinates).
@@ -46,7 +63,7 @@ namespace EQUtil {
   //
   // LAMMPS keeps each image count in IMGBITS bits (IMGMAX = 512 unless
   // built with -DLAMMPS_BIGBIG): after IMGMAX periodic crossings the count
-  // wraps and the unwrapped coordinate along dir jumps by wrap_length() =
+  // wraps and the unwrapped coordinate along dir jumps by
   // 2 IMGMAX box lengths (the box vector along dir: also in triclinic
   // boxes, where a wrap of a perpendicular count would move it by 2 IMGMAX
   // tilts; that takes 512 box lengths of drift across dir and is not
@@ -87,10 +104,6 @@ namespace EQUtil {
       }
       return u;
     }
-    // 2 IMGMAX box lengths along dir: the jump of a wrap (0: dir is not
-    // periodic, no wrap)
-    double wrap_length() const { return wrapfix ? wrap : 0.0; }
-
    private:
     Domain *domain;
     double **x;

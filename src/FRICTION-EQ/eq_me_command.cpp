@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package for LAMMPS: command eq/me (see eq_me_command.h)
 ------------------------------------------------------------------------- */
 
@@ -45,7 +62,7 @@ void EQMe::command(int narg, char **arg)
       bad = e.what();
     }
   }
-  int nbad = (int) bad.size();
+  int nbad = static_cast<int>(bad.size());
   MPI_Bcast(&nbad, 1, MPI_INT, 0, world);
   if (nbad > 0) {
     bad.resize(nbad);

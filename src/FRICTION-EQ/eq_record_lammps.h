@@ -1,4 +1,21 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package for LAMMPS: the global restart records of the
    package's fixes (lib/eq_record.h) on the LAMMPS side: written by rank 0,
    read back with the signature of the re-specified fix, and the errors
@@ -53,16 +70,15 @@ namespace EQRecord {
     try {
       return feq::unpack_record(reinterpret_cast<const double *>(buf), nvalues, sig);
     } catch (const feq::RecordError &e) {
-      const std::string why = e.what();
-      if (why.rfind("keyword:", 0) == 0) {
-        const std::string kw = why.substr(8);
+      const std::string &kw = e.keyword();
+      if (!kw.empty()) {
         lmp->error->all(FLERR, "Fix {} {}: {} differs from that of the run that wrote the restart "
                                "file: the stored {} were made with the other {}; re-specify {} as "
                                "in that run (or define the fix under another ID to start afresh)",
                         fix->id, fix->style, kw, stored, kw, kw);
       }
       lmp->error->all(FLERR, "Fix {} {}: the restart file's record of this fix is unusable: {}",
-                      fix->id, fix->style, why);
+                      fix->id, fix->style, e.what());
     }
     return {};
   }

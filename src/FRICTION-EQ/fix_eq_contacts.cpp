@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package for LAMMPS: fix eq/contacts
 
    Breaking / re-forming contact springs of the earthquake-like model of
@@ -388,9 +405,9 @@ void FixEQContacts::setup(int vflag)
   if (utils::strmatch(update->integrate_style, "^verlet"))
     post_force(vflag);
   else {
-    ((Respa *) update->integrate)->copy_flevel_f(ilevel_respa);
+    static_cast<Respa *>(update->integrate)->copy_flevel_f(ilevel_respa);
     post_force_respa(vflag, ilevel_respa, 0);
-    ((Respa *) update->integrate)->copy_f_flevel(ilevel_respa);
+    static_cast<Respa *>(update->integrate)->copy_f_flevel(ilevel_respa);
   }
 }
 
@@ -417,7 +434,7 @@ void FixEQContacts::post_force(int /*vflag*/)
     double nb = local_sum[SUM_BREAKS], all = nb;
     MPI_Allreduce(&nb, &all, 1, MPI_DOUBLE, MPI_SUM, world);
     rounds_last = all > 0.0 ? 1 : 0;
-    if (all > 0.0) record_avalanche((bigint) all, (bigint) all, 1);
+    if (all > 0.0) record_avalanche(static_cast<bigint>(all), static_cast<bigint>(all), 1);
   }
 }
 
@@ -463,7 +480,7 @@ void FixEQContacts::apply(bool allow_breaks)
       if (!(mask[i] & groupbit)) continue;
       double *const st = state[i];
       ncount += 1.0;
-      if (st[CS_THRESHOLD] == 0.0) model->form(st, (uint64_t) tag[i], unwrap(i));
+      if (st[CS_THRESHOLD] == 0.0) model->form(st, static_cast<uint64_t>(tag[i]), unwrap(i));
       if (st[CS_THRESHOLD] < 0.0) {    // detached for good
         st[CS_STRETCH] = st[CS_FORCE] = 0.0;
         continue;
@@ -473,7 +490,7 @@ void FixEQContacts::apply(bool allow_breaks)
       st[CS_STRETCH] = s;
       const double tol = ContactModel::tolerance(st, break_tol);
       if (allow_breaks && !(std::fabs(s) < st[CS_THRESHOLD] - tol)) {
-        s = model->resolve(st, (uint64_t) tag[i], s, tol, nb);
+        s = model->resolve(st, static_cast<uint64_t>(tag[i]), s, tol, nb);
         if (st[CS_THRESHOLD] < 0.0) {
           st[CS_STRETCH] = st[CS_FORCE] = 0.0;
           continue;
@@ -496,13 +513,13 @@ void FixEQContacts::apply(bool allow_breaks)
     error->one(FLERR, "Fix eq/contacts: {}", e.what());
   }
   local_breaks_total += nb;
-  local_sum[SUM_BREAKS] = (double) nb;
+  local_sum[SUM_BREAKS] = static_cast<double>(nb);
   local_sum[SUM_FORCE] = fsum;
   local_sum[SUM_ATTACHED] = natt;
   local_sum[SUM_ENERGY] = 0.5 * esum;
   local_sum[SUM_STRETCH] = ssum;
   local_sum[SUM_COUNT] = ncount;
-  local_sum[SUM_TOTAL] = (double) local_breaks_total;
+  local_sum[SUM_TOTAL] = static_cast<double>(local_breaks_total);
   reduced_valid = 0;
 }
 
@@ -725,7 +742,7 @@ double FixEQContacts::compute_vector(int n)
   switch (n) {
     case 0: reduce(); return global_sum[SUM_FORCE];
     case 1: reduce(); return global_sum[SUM_BREAKS];
-    case 2: reduce(); return global_sum[SUM_TOTAL] + (double) breaks_offset;
+    case 2: reduce(); return global_sum[SUM_TOTAL] + static_cast<double>(breaks_offset);
     case 3: reduce(); return global_sum[SUM_ATTACHED];
     case 4: reduce(); return global_sum[SUM_ENERGY];
     case 5:
@@ -738,7 +755,7 @@ double FixEQContacts::compute_vector(int n)
         reduce();
         return global_sum[SUM_BREAKS] > 0.0 ? 1.0 : 0.0;
       }
-      return (double) rounds_last;
+      return static_cast<double>(rounds_last);
   }
   return 0.0;
 }
@@ -802,9 +819,9 @@ void FixEQContacts::check_restored(int i)
 
 double FixEQContacts::memory_usage()
 {
-  return FixEQPerAtom::memory_usage() + (double) qbuf.capacity() * sizeof(double) +
-      (double) dsv.capacity() * sizeof(double) +
-      (double) (members.capacity() + blist.capacity()) * sizeof(int);
+  return FixEQPerAtom::memory_usage() + static_cast<double>(qbuf.capacity()) * sizeof(double) +
+      static_cast<double>(dsv.capacity()) * sizeof(double) +
+      static_cast<double>(members.capacity() + blist.capacity()) * sizeof(int);
 }
 
 /* ----------------------------------------------------------------------

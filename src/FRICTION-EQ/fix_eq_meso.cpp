@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package for LAMMPS: fix eq/meso
 
    lambda_c blocks of the far zone (Braun, Peyrard, Stryzheus, Tosatti,
@@ -85,8 +102,7 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
   try {
     make_model(a);
   } catch (const feq::SpecError &e) {
-    const std::string msg = e.what();
-    error->all(FLERR, "Fix eq/meso{}{}", msg.rfind(':', 0) == 0 ? "" : " ", msg);
+    error->all(FLERR, "Fix eq/meso {}", e.what());
   }
   const bigint nblocks = check(a);
   xc = a.threshold.dist->mean();
@@ -185,13 +201,12 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
         throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
       }
     }
-    if (!a.have_threshold)
-      throw feq::SpecError(std::string(": the threshold keyword is required; allowed styles: ") +
-                           feq::role_styles(feq::Role::THRESHOLD));
   } catch (const feq::SpecError &e) {
-    const std::string msg = e.what();
-    error->all(FLERR, "Fix eq/meso{}{}", msg.rfind(':', 0) == 0 ? "" : " ", msg);
+    error->all(FLERR, "Fix eq/meso {}", e.what());
   }
+  if (!a.have_threshold)
+    error->all(FLERR, "Fix eq/meso: the threshold keyword is required; allowed styles: {}",
+               feq::role_styles(feq::Role::THRESHOLD));
 }
 
 // screen kappa lambda_c rcut
@@ -217,11 +232,10 @@ void FixEQMeso::make_model(Args &a)
   const double sd = std::sqrt(std::max(0.0, a.threshold.dist->variance()));
   if (grid_default) a.du = GRID_DEFAULT_SD * sd;
   try {
-    if (grid_default && !(a.du > 0.0)) throw feq::SpecError("grid: zero width");
+    if (grid_default && !(a.du > 0.0)) throw feq::GridError("grid: zero width");
     model.reset(new feq::MesoModel(a.threshold.dist, a.reform.dist, a.du, a.crossing, a.start));
-  } catch (const feq::SpecError &e) {
-    const std::string why = e.what();
-    if (!grid_default || why.rfind("grid:", 0) != 0) throw;
+  } catch (const feq::GridError &) {
+    if (!grid_default) throw;
     throw feq::SpecError(fmt::format("threshold {}: its standard deviation {:.6g} (from its "
                                      "moments) gives no usable default grid spacing (1/8 of it, "
                                      "{:.6g}){}; set one with the grid keyword",
@@ -325,9 +339,9 @@ void FixEQMeso::setup(int vflag)
   if (utils::strmatch(update->integrate_style, "^verlet")) {
     post_force(vflag);
   } else {
-    ((Respa *) update->integrate)->copy_flevel_f(ilevel_respa);
+    static_cast<Respa *>(update->integrate)->copy_flevel_f(ilevel_respa);
     post_force_respa(vflag, ilevel_respa, 0);
-    ((Respa *) update->integrate)->copy_f_flevel(ilevel_respa);
+    static_cast<Respa *>(update->integrate)->copy_f_flevel(ilevel_respa);
   }
   check_normalization();
 }
@@ -451,7 +465,7 @@ void FixEQMeso::partners()
     int j;
   };
   std::vector<Partner> mine;
-  std::vector<int> range(2 * (size_t) nlocal, 0);
+  std::vector<int> range(2 * static_cast<size_t>(nlocal), 0);
   std::vector<int> pj2;
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -469,9 +483,9 @@ void FixEQMeso::partners()
         if (a.del[k] != b.del[k]) return a.del[k] < b.del[k];
       return false;
     });
-    range[2 * i] = (int) pj2.size();
+    range[2 * i] = static_cast<int>(pj2.size());
     for (const Partner &p : mine) pj2.push_back(p.j);
-    range[2 * i + 1] = (int) pj2.size();
+    range[2 * i + 1] = static_cast<int>(pj2.size());
   }
   first.swap(range);
   pj.swap(pj2);
@@ -489,7 +503,8 @@ void FixEQMeso::screening()
   const bool rebuilt = neighbor->ago == 0 || list_stamp < 0;
   if (rebuilt) partners();
   const int nlocal = atom->nlocal;
-  if ((int) cbuf.size() < 2 * atom->nmax) cbuf.resize(2 * (size_t) atom->nmax);
+  if (static_cast<int>(cbuf.size()) < 2 * atom->nmax)
+    cbuf.resize(2 * static_cast<size_t>(atom->nmax));
   const int *mask = atom->mask;
   for (int i = 0; i < nlocal; i++) {
     const bool block = (mask[i] & groupbit) != 0;
@@ -497,7 +512,7 @@ void FixEQMeso::screening()
     cbuf[2 * i + 1] = block ? state[i][M_DISP] : 0.0;
   }
   comm_mode = COMM_RATE;
-  EQCompat::forward_comm(comm, (Fix *) this);
+  EQCompat::forward_comm(comm, static_cast<Fix *>(this));
 
   double **x = atom->x;
   const int d = idir;
@@ -558,11 +573,11 @@ void FixEQMeso::screening()
     MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
     pi0_max = out.value;
     if (pi0_max >= 1.0) {
-      double who = iworst >= 0 ? (double) atom->tag[iworst] : 0.0;
+      double who = iworst >= 0 ? static_cast<double>(atom->tag[iworst]) : 0.0;
       MPI_Bcast(&who, 1, MPI_DOUBLE, out.rank, world);
       error->all(FLERR, "Fix eq/meso screen: Pi0 = sum_m Pi_mn = {:.6g} >= 1 at block {}: no "
                         "screened solution (eps0 = Pi0/(1 - Pi0) diverges); lower kappa ({}) or "
-                        "rcut ({})", pi0_max, (tagint) who, kappa, rcut);
+                        "rcut ({})", pi0_max, static_cast<tagint>(who), kappa, rcut);
     }
   }
 }
@@ -579,7 +594,8 @@ int FixEQMeso::pack_forward_comm(int n, int *list_, double *buf, int /*pbc_flag*
 
 void FixEQMeso::unpack_forward_comm(int n, int first_, double *buf)
 {
-  if ((int) cbuf.size() < 2 * (first_ + n)) cbuf.resize(2 * (size_t) (first_ + n));
+  if (static_cast<int>(cbuf.size()) < 2 * (first_ + n))
+    cbuf.resize(2 * static_cast<size_t>(first_ + n));
   for (int i = 0; i < n; i++) {
     cbuf[2 * (first_ + i)] = buf[2 * i];
     cbuf[2 * (first_ + i) + 1] = buf[2 * i + 1];
@@ -750,6 +766,6 @@ int FixEQMeso::modify_param(int narg, char **arg)
 double FixEQMeso::memory_usage()
 {
   return FixEQPerAtom::memory_usage() +
-      (double) (cbuf.capacity() + qbuf.capacity()) * sizeof(double) +
-      (double) (pj.capacity() + first.capacity()) * sizeof(int);
+      static_cast<double>(cbuf.capacity() + qbuf.capacity()) * sizeof(double) +
+      static_cast<double>(pj.capacity() + first.capacity()) * sizeof(int);
 }

@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package for LAMMPS: fix eq/substrate
 
    Substrate force of the lambda_c blocks of the FK-ME model (Braun,
@@ -163,9 +180,8 @@ void FixEQSubstrate::parse_shape(const std::vector<std::string> &args, size_t &i
   }
 }
 
-// disorder <distribution> seed: the shared parser names its role
-// 'stiffness'; the messages name this keyword, and its numbers must be
-// finite
+// disorder <distribution> seed: the shared parser (role stiffness) with
+// messages that name this keyword, and numbers that must be finite
 void FixEQSubstrate::parse_disorder(const std::vector<std::string> &args, size_t &iarg)
 {
   const feq::NumberParser lmp_number = EQUtil::number_parser(lmp);
@@ -174,16 +190,8 @@ void FixEQSubstrate::parse_disorder(const std::vector<std::string> &args, size_t
     if (!std::isfinite(v)) throw feq::SpecError("not a finite number");
     return v;
   };
-  try {
-    disorder = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number);
-  } catch (const feq::SpecError &e) {
-    std::string msg = e.what();
-    if (msg.rfind("stiffness", 0) == 0) msg = "disorder" + msg.substr(9);
-    const std::string nonum = ": expected a number for ";
-    const size_t at = msg.find(nonum);
-    if (at != std::string::npos) msg.replace(at, nonum.size(), ": expected a finite number for ");
-    throw feq::SpecError(msg);
-  }
+  disorder = feq::parse_distribution(feq::Role::STIFFNESS, args, iarg, number, {},
+                                     feq::SpecWording("disorder", "a finite number"));
   if (iarg >= args.size()) throw feq::SpecError("disorder: missing seed after " + disorder.text);
   const std::string &tok = args[iarg++];
   if (!utils::is_integer(tok) ||
@@ -318,9 +326,9 @@ void FixEQSubstrate::setup(int vflag)
   if (utils::strmatch(update->integrate_style, "^verlet"))
     post_force(vflag);
   else {
-    ((Respa *) update->integrate)->copy_flevel_f(ilevel_respa);
+    static_cast<Respa *>(update->integrate)->copy_flevel_f(ilevel_respa);
     post_force_respa(vflag, ilevel_respa, 0);
-    ((Respa *) update->integrate)->copy_f_flevel(ilevel_respa);
+    static_cast<Respa *>(update->integrate)->copy_f_flevel(ilevel_respa);
   }
 }
 
@@ -488,16 +496,17 @@ void FixEQSubstrate::post_run()
     struct {
       double step;
       int rank;
-    } mine{njump ? (double) jump_step : HUGE_VAL, comm->me}, first{0.0, 0};
+    } mine{njump ? static_cast<double>(jump_step) : HUGE_VAL, comm->me}, first{0.0, 0};
     MPI_Allreduce(&mine, &first, 1, MPI_DOUBLE_INT, MPI_MINLOC, world);
-    double info[3] = {(double) jump_tag, jump_size, (double) jump_step};
+    double info[3] = {static_cast<double>(jump_tag), jump_size, static_cast<double>(jump_step)};
     MPI_Bcast(info, 3, MPI_DOUBLE, first.rank, world);
     if (comm->me == 0)
       error->warning(FLERR,
                      "Fix eq/substrate: {} moves of a block by more than half the substrate "
                      "period {} in one step in this run (the first: block {} by {} at step {}): "
                      "the time step is too large to resolve F_s",
-                     total, shape.period(), (tagint) info[0], info[1], (bigint) info[2]);
+                     total, shape.period(), static_cast<tagint>(info[0]), info[1],
+                     static_cast<bigint>(info[2]));
   }
   njump = 0;
   jump_step = -1;

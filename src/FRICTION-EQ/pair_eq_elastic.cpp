@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package for LAMMPS: pair_style eq/elastic
 
    Elastic interaction between the atoms of one coordinate source (Braun,
@@ -204,7 +221,7 @@ void PairEQElastic::settings(int narg, char **arg)
     if (n < 0 || n > MAXSMALLINT)
       error->all(FLERR, "Pair style eq/elastic: check must be an integer >= 0 (0: never; got {})",
                  arg[2]);
-    check_every = (int) n;
+    check_every = static_cast<int>(n);
   }
 
   // reset explicit cutoffs that were set from the previous global cutoff
@@ -1079,9 +1096,9 @@ void PairEQElastic::reinit()
 void *PairEQElastic::extract(const char *str, int &dim)
 {
   dim = 2;
-  if (strcmp(str, "ftilde") == 0) return (void *) ftilde;
-  if (strcmp(str, "lambda_c") == 0) return (void *) lambda;
-  if (strcmp(str, "cut") == 0) return (void *) cut;
+  if (strcmp(str, "ftilde") == 0) return static_cast<void *>(ftilde);
+  if (strcmp(str, "lambda_c") == 0) return static_cast<void *>(lambda);
+  if (strcmp(str, "cut") == 0) return static_cast<void *>(cut);
   return nullptr;
 }
 
@@ -1140,8 +1157,8 @@ void PairEQElastic::write_restart(FILE *fp)
       fwrite(&setflag[i][j], sizeof(int), 1, fp);
       if (!setflag[i][j]) continue;
       const feq::Kernel &k = kernels[kidx[i][j]];
-      const int kind = (int) k.kind;
-      const int n = (int) k.r.size();
+      const int kind = static_cast<int>(k.kind);
+      const int n = static_cast<int>(k.r.size());
       const int aniso = k.anisotropic() ? 1 : 0;
       fwrite(&kind, sizeof(int), 1, fp);
       fwrite(&k.ftilde, sizeof(double), 1, fp);
@@ -1200,7 +1217,7 @@ void PairEQElastic::read_restart(FILE *fp)
       }
       k.source = k.kind == feq::Kernel::TABLE ? "table (restart)" : "crossover";
       kernels.push_back(k);
-      kidx[i][j] = (int) kernels.size() - 1;
+      kidx[i][j] = static_cast<int>(kernels.size()) - 1;
       ftilde[i][j] = k.ftilde;
       lambda[i][j] = k.lambda;
     }
@@ -1212,7 +1229,7 @@ double PairEQElastic::memory_usage()
 {
   double bytes = Pair::memory_usage();
   bytes += 9.0 * nmax * sizeof(double);
-  bytes += (double) pj.capacity() * sizeof(int) + pk.capacity() * sizeof(double);
-  bytes += (double) first.capacity() * sizeof(int);
+  bytes += static_cast<double>(pj.capacity()) * sizeof(int) + pk.capacity() * sizeof(double);
+  bytes += static_cast<double>(first.capacity()) * sizeof(int);
   return bytes;
 }

@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    eq-green: elastic interaction between contacts from the surface Green
    tensor (paper Sec. III), solver in src/FRICTION-EQ/lib/eq_green.h
 
@@ -113,7 +130,7 @@ int main(int argc, char **argv)
       else if (k == "dense_limit") {
         const long n = integer(k, val());
         if (n < 1) throw UsageError("keyword dense_limit: must be >= 1");
-        o.dense_limit = (size_t) n;
+        o.dense_limit = static_cast<size_t>(n);
       }
       else if (k == "rmax") rmax = integer(k, val());
       else if (k == "kc") {

@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package: break engine of the EQ model (see eq_contact.h)
 ------------------------------------------------------------------------- */
 
@@ -39,7 +56,7 @@ ContactModel::ContactModel(double kc, uint64_t seed_, const DistributionSpec &th
   check_reform(*threshold.dist, reform);
   reform_point = reform.dist && reform.dist->is_point();
   reform_value = reform.dist ? reform.dist->mean() : 0.0;
-  stiffness_const = stiffness.text == "constant";
+  stiffness_const = stiffness.constant();
   // re-forming stretches are drawn from R truncated to |r| < max x_s (a
   // weight below REFORM_BEYOND_TOLERANCE, checked above), so that no draw
   // can abort a run
@@ -67,8 +84,8 @@ double ContactModel::draw_reform(uint64_t tag, uint64_t event, uint32_t stream) 
 void ContactModel::form(double *st, uint64_t tag, double xu) const
 {
   const bool reentry = st[CS_STIFFNESS] < 0.0;
-  const uint64_t event = reentry ? (uint64_t) st[CS_NBREAK] : 0;
-  const uint32_t off = reentry ? (uint32_t) STREAM_REENTRY : 0u;
+  const uint64_t event = reentry ? static_cast<uint64_t>(st[CS_NBREAK]) : 0;
+  const uint32_t off = reentry ? static_cast<uint32_t>(STREAM_REENTRY) : 0u;
   const double s0 = start_reform ? draw_reform(tag, event, STREAM_REFORM + off) : 0.0;
   const double k = stiffness_const
       ? k0
@@ -81,7 +98,7 @@ void ContactModel::form(double *st, uint64_t tag, double xu) const
   st[CS_STRETCH] = s0;
   st[CS_THRESHOLD] = th;
   st[CS_FORCE] = k * s0;
-  st[CS_NBREAK] = (double) event;
+  st[CS_NBREAK] = static_cast<double>(event);
   st[CS_STIFFNESS] = k;
   st[CS_ANCHOR] = xu - s0;
   st[CS_FIELD] = 0.0;
@@ -103,7 +120,7 @@ void ContactModel::depart(double *st)
 
 double ContactModel::renew(double *st, uint64_t tag, uint64_t event) const
 {
-  st[CS_NBREAK] = (double) event;
+  st[CS_NBREAK] = static_cast<double>(event);
   if (!reform.dist) {    // never re-forms: detached for good
     st[CS_THRESHOLD] = -1.0;
     st[CS_STIFFNESS] = 0.0;
@@ -137,7 +154,7 @@ double ContactModel::break_once(double *st, uint64_t tag, double e, double h, do
   const double sign = e > 0.0 ? 1.0 : -1.0;
   const double over = exact ? e - sign * st[CS_THRESHOLD] : 0.0;
   const double s_old = st[CS_STRETCH];
-  const double r = renew(st, tag, (uint64_t) st[CS_NBREAK] + 1);
+  const double r = renew(st, tag, static_cast<uint64_t>(st[CS_NBREAK]) + 1);
   if (std::isnan(r)) return 0.0;
   const double target = sign * r + over;    // new force / k
   double s_new = target;
@@ -177,7 +194,7 @@ double ContactModel::resolve(double *st, uint64_t tag, double s, double tol, lon
     const double sign = s > 0.0 ? 1.0 : -1.0;
     const double over = exact ? s - sign * st[CS_THRESHOLD] : 0.0;
     ++nbreaks;
-    const double r = renew(st, tag, (uint64_t) st[CS_NBREAK] + 1);
+    const double r = renew(st, tag, static_cast<uint64_t>(st[CS_NBREAK]) + 1);
     if (std::isnan(r)) return 0.0;
     s = sign * r + over;
   }
@@ -193,7 +210,7 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
   AvalancheResult res;
   int top = -1;
   for (int m = 0; m < nmembers; ++m) top = std::max(top, members[m]);
-  if ((int) ds.size() < top + 1) ds.resize(top + 1);
+  if (static_cast<int>(ds.size()) < top + 1) ds.resize(top + 1);
   list.reserve(nmembers);
   while (true) {
     // all contacts over their thresholds at the start of the round
@@ -206,7 +223,7 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
       const double e = st[CS_STRETCH] + hooks.field(i) / st[CS_STIFFNESS];
       if (!(std::fabs(e) < th - ContactModel::tolerance(st, tol))) list.push_back(i);
     }
-    const long all = hooks.global_sum((long) list.size());
+    const long all = hooks.global_sum(static_cast<long>(list.size()));
     if (all == 0) break;
     if (++res.rounds > AVALANCHE_MAX_ROUNDS)
       throw BreakError("avalanche did not stop after " + std::to_string(AVALANCHE_MAX_ROUNDS) +
@@ -226,9 +243,9 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
       const double s_old = st[CS_STRETCH];
       ds[i] = model.break_once(st, hooks.tag(i), e, h, hooks.coupling(i)) - s_old;
     }
-    res.local += (long) list.size();
+    res.local += static_cast<long>(list.size());
     if (!model.reforms()) hooks.detached();
-    else hooks.changed(list.data(), (int) list.size(), ds.data());
+    else hooks.changed(list.data(), static_cast<int>(list.size()), ds.data());
   }
   return res;
 }

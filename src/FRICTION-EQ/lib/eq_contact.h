@@ -1,4 +1,21 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package: the break engine of the EQ model (paper Sec. II,
    and Sec. IV for interacting contacts).  LAMMPS-free: fix eq/contacts
    keeps one row of CS_NCOL doubles per contact (its per-atom array) and
@@ -98,12 +115,7 @@ class ContactModel {
   }
 
   bool reforms() const { return reform.dist != nullptr; }
-  bool exact_crossing() const { return exact; }
   bool reform_as_force() const { return reform_force; }
-  double kc() const { return k0; }
-  const DistributionSpec &threshold_spec() const { return threshold; }
-  const DistributionSpec &reform_spec() const { return reform; }
-  const DistributionSpec &stiffness_spec() const { return stiffness; }
 
   // at most this many breaks of one contact within one step
   static constexpr int MAX_BREAKS_PER_STEP = 1000;

@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package: distributions (see eq_distribution.h)
 ------------------------------------------------------------------------- */
 
@@ -57,6 +74,7 @@ double normal_sf_antideriv(double z)
 class UniformDist : public Distribution {
  public:
   UniformDist(double a, double b) : a(a), b(b), w(b - a) {}
+  DistKind kind() const override { return DistKind::UNIFORM; }
   std::string describe() const override { return "uniform " + fmtnum(a) + " " + fmtnum(b); }
   double lower() const override { return a; }
   double upper() const override { return b; }
@@ -98,6 +116,7 @@ class GaussianDist : public Distribution {
     Z = (L == -INF) ? 1.0 : normal_sf(zL);
     PhiL = (L == -INF) ? 0.0 : normal_cdf(zL);
   }
+  DistKind kind() const override { return DistKind::GAUSSIAN; }
   std::string describe() const override
   {
     std::string s = "gaussian " + fmtnum(mu) + " " + fmtnum(sd);
@@ -193,6 +212,7 @@ class GaussianDist : public Distribution {
 class RealisticDist : public Distribution {
  public:
   explicit RealisticDist(double xs) : xs(xs) {}
+  DistKind kind() const override { return DistKind::REALISTIC; }
   std::string describe() const override { return "realistic " + fmtnum(xs); }
   double lower() const override { return 0.0; }
   double upper() const override { return INF; }
@@ -291,6 +311,7 @@ class RealisticDist : public Distribution {
 class DeltaDist : public Distribution {
  public:
   explicit DeltaDist(double x0) : x0(x0) {}
+  DistKind kind() const override { return DistKind::DELTA; }
   std::string describe() const override { return "delta " + fmtnum(x0); }
   double lower() const override { return x0; }
   double upper() const override { return x0; }
@@ -306,7 +327,6 @@ class DeltaDist : public Distribution {
   double partial_mean(double a, double b) const override { return (a < x0 && x0 <= b) ? x0 : 0.0; }
   double mean() const override { return x0; }
   double second_moment() const override { return x0 * x0; }
-  bool is_point() const override { return true; }
   std::vector<double> breakpoints() const override { return {x0}; }
 
  private:
@@ -340,6 +360,7 @@ class TableDist : public Distribution {
           s * (a * a * h * h / 2.0 + 2.0 * a * h * h * h / 3.0 + h * h * h * h / 4.0);
     }
   }
+  DistKind kind() const override { return DistKind::TABLE; }
   std::string describe() const override { return "table " + label; }
   double lower() const override { return x.front(); }
   double upper() const override { return x.back(); }
@@ -657,7 +678,7 @@ void read_table_text(const std::string &text, const std::string &path, const std
   const int nline = lineno;
   x.clear();
   p.clear();
-  while ((long) x.size() < n && std::getline(in, line)) {
+  while (static_cast<long>(x.size()) < n && std::getline(in, line)) {
     ++lineno;
     std::istringstream ws(line);
     std::string a, b, c, extra;
@@ -667,7 +688,7 @@ void read_table_text(const std::string &text, const std::string &path, const std
     if (!integer(a, idx)) break;    // the next section begins: too few points
     if (!(ws >> b >> c) || (ws >> extra))
       throw SpecError(where() + ": expected 'index x P(x)'");
-    if (idx != (long) x.size() + 1)
+    if (idx != static_cast<long>(x.size()) + 1)
       throw SpecError(where() + ": index " + a + " out of sequence (expected " +
                       std::to_string(x.size() + 1) + ")");
     double xv, pv;
@@ -680,7 +701,7 @@ void read_table_text(const std::string &text, const std::string &path, const std
     x.push_back(xv);
     p.push_back(pv);
   }
-  if ((long) x.size() < n)
+  if (static_cast<long>(x.size()) < n)
     throw SpecError("table file '" + path + "' section '" + keyword + "': expected " +
                     std::to_string(n) + " points, found " + std::to_string(x.size()));
   // a point line after the last one: the section has more points than its
@@ -731,20 +752,20 @@ double parse_number(const std::string &token)
   if (token.empty() || end == token.c_str() || *end != '\0')
     throw SpecError("expected a number, got '" + token + "'");
   // strtod reads them all, the causes differ: say which
-  if (std::isnan(v)) throw SpecError("value '" + token + "' is not a number (NaN)");
+  if (std::isnan(v)) throw NumberError("value '" + token + "' is not a number (NaN)");
   if (std::isinf(v))
-    throw SpecError("value '" + token + "' is " +
-                    (range ? "beyond the range of a double (largest " +
-                                 fmtnum(std::numeric_limits<double>::max()) + ")"
-                           : std::string("infinite")));
+    throw NumberError("value '" + token + "' is " +
+                      (range ? "beyond the range of a double (largest " +
+                                   fmtnum(std::numeric_limits<double>::max()) + ")"
+                             : std::string("infinite")));
   if (std::fpclassify(v) == FP_SUBNORMAL)
-    throw SpecError("value '" + token + "' is subnormal (nonzero and smaller in magnitude than " +
-                    fmtnum(std::numeric_limits<double>::min()) +
-                    ", the smallest normal double: it would lose precision); write 0 or a "
-                    "normal number");
+    throw NumberError("value '" + token + "' is subnormal (nonzero and smaller in magnitude than " +
+                      fmtnum(std::numeric_limits<double>::min()) +
+                      ", the smallest normal double: it would lose precision); write 0 or a "
+                      "normal number");
   if (v == 0.0 && range)
-    throw SpecError("value '" + token + "' is below the subnormal range of a double (it would "
-                    "be read as 0); write 0 or a normal number");
+    throw NumberError("value '" + token + "' is below the subnormal range of a double (it would "
+                      "be read as 0); write 0 or a normal number");
   return v;
 }
 
@@ -766,20 +787,22 @@ const char *role_styles(Role role)
   }
 }
 
+// Every message names the keyword first: the ones made here and the
+// factories' start with the style, and the keyword is put before them.
 DistributionSpec parse_distribution(Role role, const std::vector<std::string> &args, size_t &pos,
-                                    const NumberParser &number, const FileLoader &load)
+                                    const NumberParser &number, const FileLoader &load,
+                                    const SpecWording &wording)
 {
-  const std::string kw = role_keyword(role);
+  const std::string kw = wording.keyword.empty() ? role_keyword(role) : wording.keyword;
   if (pos >= args.size())
     throw SpecError(kw + ": missing style; allowed: " + role_styles(role));
   const std::string style = args[pos++];
-  const std::string where = kw + " " + style;
 
   auto values = [&](size_t n, const char *names) {
     size_t avail = 0;
     while (avail < n && pos + avail < args.size()) ++avail;
     if (avail < n)
-      throw SpecError(where + ": expected " + std::to_string(n) + " value" + (n > 1 ? "s" : "") +
+      throw SpecError(style + ": expected " + std::to_string(n) + " value" + (n > 1 ? "s" : "") +
                       " (" + names + "), got " + std::to_string(avail));
     std::istringstream nm(names);
     std::vector<double> v;
@@ -789,18 +812,15 @@ DistributionSpec parse_distribution(Role role, const std::vector<std::string> &a
       const std::string &tok = args[pos++];
       try {
         v.push_back(number(tok));
-      } catch (const SpecError &e) {
+      } catch (const NumberError &e) {
         // a number that is not usable (subnormal, out of range): its cause
-        const std::string why = e.what();
-        if (why.rfind("value '", 0) == 0) throw SpecError(where + ": " + name + ": " + why);
-        throw SpecError(where + ": expected a number for " + name + ", got '" + tok + "'");
+        throw SpecError(style + ": " + name + ": " + e.what());
+      } catch (const SpecError &) {
+        throw SpecError(style + ": expected " + wording.number + " for " + name + ", got '" + tok +
+                        "'");
       }
     }
     return v;
-  };
-  auto rethrow = [&](const SpecError &e) {
-    // the factory messages start with the style name: prefix the keyword
-    throw SpecError(kw + " " + e.what());
   };
 
   DistributionSpec spec;
@@ -853,9 +873,7 @@ DistributionSpec parse_distribution(Role role, const std::vector<std::string> &a
       throw SpecError("unknown style '" + style + "'; allowed: " + role_styles(role));
     }
   } catch (const SpecError &e) {
-    const std::string msg = e.what();
-    if (msg.rfind(kw + " ", 0) == 0) throw;
-    rethrow(e);
+    throw SpecError(kw + " " + e.what());
   }
   spec.text = spec.dist->describe();
   return spec;

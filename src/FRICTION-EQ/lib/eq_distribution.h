@@ -1,4 +1,21 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package: one-dimensional probability distributions used by
    the EQ model (breaking thresholds P_c, re-forming stretches R,
    per-contact stiffness factors) and by the master-equation solver.
@@ -17,6 +34,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace feq {
@@ -28,10 +46,24 @@ class SpecError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A token that reads as a number whose value is not usable (NaN, infinite,
+// beyond the range of a double, subnormal, below the subnormal range):
+// parse_number() throws it with the cause ("value '<token>' is ..."), so
+// that callers name the cause rather than "expected a number".
+class NumberError : public SpecError {
+ public:
+  using SpecError::SpecError;
+};
+
+// The family of a distribution, for behaviour that depends on it (the
+// display text describe() is for people, never for decisions).
+enum class DistKind { UNIFORM, GAUSSIAN, REALISTIC, DELTA, TABLE };
+
 class Distribution {
  public:
   virtual ~Distribution() = default;
 
+  virtual DistKind kind() const = 0;
   virtual std::string describe() const = 0;    // e.g. "uniform 0.75 1.25"
   virtual double lower() const = 0;            // support [lower, upper], may be infinite
   virtual double upper() const = 0;
@@ -44,7 +76,7 @@ class Distribution {
   virtual double partial_mean(double a, double b) const = 0;    // int_a^b x dP(x), (a,b]
   virtual double mean() const = 0;
   virtual double second_moment() const = 0;
-  virtual bool is_point() const { return false; }
+  bool is_point() const { return kind() == DistKind::DELTA; }    // a point mass
   // points where the density is not smooth (quadrature break points)
   virtual std::vector<double> breakpoints() const { return {}; }
 
@@ -106,7 +138,11 @@ enum class Role { THRESHOLD, REFORM, STIFFNESS };
 
 struct DistributionSpec {
   DistributionPtr dist;    // null for "reform none" (contacts never re-form)
-  std::string text;        // canonical text, e.g. "uniform 0.75 1.25"
+  std::string text;        // canonical text, e.g. "uniform 0.75 1.25" (for display)
+
+  // the point mass at 1: "stiffness constant" (the default), k_i = k_c
+  // exactly, nothing drawn
+  bool constant() const { return dist && dist->is_point() && dist->mean() == 1.0; }
 };
 
 // number parser: converts one token or throws (LAMMPS passes utils::numeric)
@@ -117,9 +153,23 @@ using NumberParser = std::function<double(const std::string &)>;
 // same error; the default reads the named file.
 using FileLoader = std::function<std::string(const std::string &)>;
 
+// What the messages of parse_distribution call the keyword and the numbers
+// it expects: by default the role's keyword and "a number" (fix
+// eq/substrate's disorder keyword parses a stiffness distribution of
+// finite numbers: "disorder", "a finite number").
+struct SpecWording {
+  explicit SpecWording(std::string keyword_ = std::string(), std::string number_ = "a number") :
+      keyword(std::move(keyword_)), number(std::move(number_))
+  {
+  }
+  std::string keyword;    // empty: role_keyword(role)
+  std::string number;
+};
+
 // Parses the values after a keyword, starting at args[pos]; advances pos.
 DistributionSpec parse_distribution(Role role, const std::vector<std::string> &args, size_t &pos,
-                                    const NumberParser &number, const FileLoader &load = {});
+                                    const NumberParser &number, const FileLoader &load = {},
+                                    const SpecWording &wording = SpecWording());
 
 // Probability that a re-forming stretch r lies at or beyond the largest
 // breaking threshold, |r| >= max x_s (0 when P_c is unbounded): such a
@@ -133,8 +183,9 @@ void check_reform(const Distribution &Pc, const DistributionSpec &reform);
 // Strict default number parser (whole token, finite, normal or 0), also
 // the numbers of threshold and substrate tables (read_table_text): throws
 // SpecError "expected a number, got '<token>'" or, for a number strtod
-// reads that is no usable double, "value '<token>' is ..." with the cause
-// (subnormal, below the subnormal range, beyond the range, infinite, NaN).
+// reads that is no usable double, NumberError "value '<token>' is ..."
+// with the cause (subnormal, below the subnormal range, beyond the range,
+// infinite, NaN).
 double parse_number(const std::string &token);
 
 const char *role_keyword(Role role);

@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ: interaction kernel k(r) (see eq_kernel.h)
 ------------------------------------------------------------------------- */
 
@@ -62,9 +79,9 @@ double table_number(const std::string &s, const std::string &where)
 {
   try {
     return parse_number(s);
-  } catch (const SpecError &e) {
-    const std::string why = e.what();
-    if (why.rfind("value '", 0) == 0) throw SpecError(where + ": " + why);
+  } catch (const NumberError &e) {
+    throw SpecError(where + ": " + e.what());
+  } catch (const SpecError &) {
     throw SpecError(where + ": not a finite number");
   }
 }
@@ -115,7 +132,7 @@ Kernel read_kernel_table(const std::string &text, const std::string &path,
   k.kind = Kernel::TABLE;
   k.source = path + " " + keyword;
   const size_t ncol = aniso ? 4 : 3;
-  while ((long) k.r.size() < n && std::getline(in, line)) {
+  while (static_cast<long>(k.r.size()) < n && std::getline(in, line)) {
     ++lineno;
     std::istringstream ws(line);
     std::vector<std::string> tok;
@@ -127,7 +144,7 @@ Kernel read_kernel_table(const std::string &text, const std::string &path,
     if (*end != '\0') break;    // next section: too few points
     if (tok.size() != ncol)
       throw SpecError(where() + (aniso ? ": expected 'index r k0 k2'" : ": expected 'index r k'"));
-    if (idx != (long) k.r.size() + 1)
+    if (idx != static_cast<long>(k.r.size()) + 1)
       throw SpecError(where() + ": index " + tok[0] + " out of sequence (expected " +
                       std::to_string(k.r.size() + 1) + ")");
     const double rv = table_number(tok[1], where());
@@ -140,7 +157,7 @@ Kernel read_kernel_table(const std::string &text, const std::string &path,
     k.k0.push_back(kv);
     if (aniso) k.k2.push_back(k2v);
   }
-  if ((long) k.r.size() < n)
+  if (static_cast<long>(k.r.size()) < n)
     throw SpecError("table file '" + path + "' section '" + keyword + "': expected " +
                     std::to_string(n) + " points, found " + std::to_string(k.r.size()));
   // a point line after the last one: the section has more points than its

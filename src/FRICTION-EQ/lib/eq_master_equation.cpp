@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package: master-equation solver (see eq_master_equation.h)
 ------------------------------------------------------------------------- */
 
@@ -115,8 +132,8 @@ MasterEquation::MasterEquation(DistributionPtr Pc_, DistributionPtr R_, double d
     throw SpecError("master equation: the stretch grid x in [" + fmtg(std::min(rlo, 0.0)) + ", " +
                     fmtg(top) + "] would need " + fmtg(jneg_d + jpos_d + 1.0) + " points at dx = " +
                     fmtg(dx) + " (at most " + fmtg(ME_MAX_GRID_POINTS) + "); raise dx");
-  const long jneg = (long) jneg_d;
-  const long jpos = (long) jpos_d;
+  const long jneg = static_cast<long>(jneg_d);
+  const long jpos = static_cast<long>(jpos_d);
   const long n = jneg + jpos + 1;
   x.resize(n);
   for (long j = 0; j < n; ++j) x[j] = double(j - jneg) * dx;
@@ -147,7 +164,7 @@ MasterEquation::MasterEquation(DistributionPtr Pc_, DistributionPtr R_, double d
     if (R->is_point()) {
       const double x0 = R->mean();
       const double f = (x0 - x[0]) / dx;
-      long k = std::min((long) std::floor(f), n - 2);
+      long k = std::min(static_cast<long>(std::floor(f)), n - 2);
       const double t = f - double(k);
       w[k] += 1.0 - t;
       w[k + 1] += t;
@@ -238,7 +255,7 @@ void MasterEquation::start(MEStart how)
 
 void MasterEquation::step()
 {
-  const long n = (long) m.size();
+  const long n = static_cast<long>(m.size());
   ++nstep;
   double b0 = 0.0, b1 = 0.0;    // broken mass re-formed at r, at r + dx
   // transport by one grid point with survival; mass at the last point breaks
@@ -368,10 +385,10 @@ MEResult solve_master_equation(DistributionPtr Pc, DistributionPtr R, const MEOp
   MEResult r;
   r.dx = opt.dx;
   r.x = me.grid();
-  const long nsteps = (long) std::llround(opt.Xmax / opt.dx);
+  const long nsteps = static_cast<long>(std::llround(opt.Xmax / opt.dx));
   r.X.reserve(nsteps + 1);
   std::vector<long> snapk;
-  for (double xs : opt.snapshots) snapk.push_back((long) std::llround(xs / opt.dx));
+  for (double xs : opt.snapshots) snapk.push_back(static_cast<long>(std::llround(xs / opt.dx)));
   const double attached0 = me.attached();
   for (long k = 0; k <= nsteps; ++k) {
     if (k > 0) me.step();

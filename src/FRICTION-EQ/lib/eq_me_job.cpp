@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package: master-equation jobs (see eq_me_job.h)
 ------------------------------------------------------------------------- */
 
@@ -71,7 +88,7 @@ std::string format(const char *fmt, ...)
 bool exact_applies(const MEJob &job)
 {
   const Distribution &Pc = *job.threshold.dist;
-  return job.threshold.text.rfind("uniform", 0) == 0 && job.reform.dist &&
+  return Pc.kind() == DistKind::UNIFORM && job.reform.dist &&
       job.reform.dist->is_point() && job.reform.dist->mean() == 0.0 &&
       job.opt.start == MEStart::RELAXED && job.opt.crossing == Crossing::EXACT && Pc.lower() > 0.0;
 }
@@ -144,9 +161,9 @@ void check_exact(const MEJob &job)
                     "hi - lo not too small: lower xmax");
   // the table: a point every 0.01 in X (run_me_job), work sampled at up to
   // 100 of them
-  const size_t stride = std::max<size_t>(1, (size_t) std::llround(0.01 / job.opt.dx));
+  const size_t stride = std::max<size_t>(1, static_cast<size_t>(std::llround(0.01 / job.opt.dx)));
   const double points = std::floor(X / (stride * job.opt.dx) + 0.5) + 1.0;
-  const int samples = (int) std::min(points, 100.0);
+  const int samples = static_cast<int>(std::min(points, 100.0));
   double sum = 0.0;
   for (int i = 1; i <= samples; ++i) sum += exact.work(X * i / samples);
   const double total = sum * points / samples;
@@ -361,7 +378,7 @@ MEReport run_me_job(const MEJob &job, bool write_files)
   // per-contact stiffness k_i = kc f: F scales with <f>, the spread of one
   // contact's force is sqrt(<f^2><x^2> - <f>^2<x>^2)
   const double f1 = job.stiffness.dist->mean(), f2 = job.stiffness.dist->second_moment();
-  if (job.stiffness.text != "constant") {
+  if (!job.stiffness.constant()) {
     for (size_t k = 0; k < res.F.size(); ++k) {
       const double x1 = res.F[k], x2 = res.sd[k] * res.sd[k] + x1 * x1;
       res.F[k] = f1 * x1;
@@ -400,7 +417,7 @@ MEReport run_me_job(const MEJob &job, bool write_files)
   t += format("  threshold    %s   <x_s> = %.10g, sd = %.6g\n", job.threshold.text.c_str(),
               Pc.mean(), v["threshold_sd"]);
   t += format("  reform       %s\n", job.reform.text.c_str());
-  if (job.stiffness.text != "constant")
+  if (!job.stiffness.constant())
     t += format("  stiffness    %s: <k_i> = %.10g k_c (F below includes it)\n",
                 job.stiffness.text.c_str(), f1);
   t += format("  grid         dx = %g, X in [0, %g], %zu stretch points, start %s, crossing %s%s\n",
@@ -443,7 +460,7 @@ MEReport run_me_job(const MEJob &job, bool write_files)
     }
     double maxerr = 0.0;
     // the exact solution costs ~1e4 times more per point: every 0.01 in X
-    const size_t stride = std::max<size_t>(1, (size_t) std::llround(0.01 / opt.dx));
+    const size_t stride = std::max<size_t>(1, static_cast<size_t>(std::llround(0.01 / opt.dx)));
     for (size_t k = 0; k < res.X.size(); k += stride) {
       const double m1 = exact.mean_stretch(res.X[k]);
       if (write_files)

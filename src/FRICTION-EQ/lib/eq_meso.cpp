@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package: far-zone lambda_c-block kernel (see eq_meso.h)
 ------------------------------------------------------------------------- */
 
@@ -41,7 +58,7 @@ enum Slot {
 // j mod n in [0, n) without an integer division (|j| < 2^52)
 inline long wrap(long j, long n, double inv_n)
 {
-  long r = j - n * (long) std::floor(double(j) * inv_n);
+  long r = j - n * static_cast<long>(std::floor(double(j) * inv_n));
   if (r < 0) r += n;
   else if (r >= n) r -= n;
   return r;
@@ -93,14 +110,14 @@ MesoModel::MesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_, Crossi
   if (!(Pc->lower() >= 0.0))
     throw SpecError("threshold " + Pc->describe() + ": breaking thresholds must be >= 0");
   if (!(du > 0.0) || !std::isfinite(du))
-    throw SpecError("grid: spacing must be a finite number > 0 (got " + fmt(du) + ")");
+    throw GridError("grid: spacing must be a finite number > 0 (got " + fmt(du) + ")");
   const double sd = std::sqrt(std::max(0.0, Pc->variance()));
   if (!(sd > 0.0))
-    throw SpecError("grid: threshold " + Pc->describe() +
+    throw GridError("grid: threshold " + Pc->describe() +
                     " has zero width; the anchor grid needs a spread of thresholds");
   const double dmax = max_grid(*Pc);
   if (du > dmax)
-    throw SpecError("grid: spacing " + fmt(du) + " is too coarse for threshold " + Pc->describe() +
+    throw GridError("grid: spacing " + fmt(du) + " is too coarse for threshold " + Pc->describe() +
                     " (sd " + fmt(sd) + "); the largest allowed value is " +
                     fmt(round_down4(dmax)) + " (" + fmt(MESO_GRID_SD_FRACTION) + " sd)");
   if (R) check_reform(*Pc, {R, R->describe()});
@@ -121,7 +138,7 @@ MesoModel::MesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_, Crossi
     if (!std::isfinite(rsup_hi)) rsup_hi = R->isf(TAIL);
   }
   if (width_bound(du) > double(MESO_MAX_WIDTH))
-    throw SpecError("grid: spacing " + fmt(du) + " needs about " + fmt(width_bound(du)) +
+    throw GridError("grid: spacing " + fmt(du) + " needs about " + fmt(width_bound(du)) +
                     " doubles per block (limit " + std::to_string(MESO_MAX_WIDTH) +
                     "); use a spacing >= " + fmt(min_grid()));
 
@@ -131,13 +148,13 @@ MesoModel::MesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_, Crossi
   if (R) {
     if (R->is_point()) {
       const double f = R->mean() * inv_du;
-      const long k = (long) std::floor(f);
+      const long k = static_cast<long>(std::floor(f));
       const double t = f - double(k);
       w.push_back({k, 1.0 - t});
       w.push_back({k + 1, t});
     } else {
-      const long klo = (long) std::floor(rsup_lo * inv_du);
-      const long khi = (long) std::ceil(rsup_hi * inv_du);
+      const long klo = static_cast<long>(std::floor(rsup_lo * inv_du));
+      const long khi = static_cast<long>(std::ceil(rsup_hi * inv_du));
       std::vector<double> wk(khi - klo + 2, 0.0);
       for (long k = klo; k <= khi; ++k) {
         const double a = double(k) * du, b = double(k + 1) * du;
@@ -169,7 +186,7 @@ MesoModel::MesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_, Crossi
   for (const Line &L : hlines) kheld = std::max(kheld, int(-L.k));
   for (const Line &L : lines) kmax = std::max(kmax, L.k);
 
-  nt = std::max((long) std::ceil(ytop * inv_du), kmax + 1);
+  nt = std::max(static_cast<long>(std::ceil(ytop * inv_du)), kmax + 1);
   nt = std::max(nt, 1L);
   ncap = int(nt) + 4;
   nrec = kheld > 0 ? 2 * kheld + 2 : 0;
@@ -181,7 +198,7 @@ MesoModel::MesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_, Crossi
   // table of J and G on y_i = i dy
   dy = du / TABLE_REFINE;
   inv_dy = 1.0 / dy;
-  ntab = (long) std::ceil(ytop * inv_dy) + 1;
+  ntab = static_cast<long>(std::ceil(ytop * inv_dy)) + 1;
   tab.assign(9 * ntab, 0.0);
   exact.assign(ntab, 0);
   std::vector<double> kinks = Pc->breakpoints();
@@ -254,7 +271,7 @@ inline void MesoModel::lookup(double y, double &Jv, double &Gv) const
     Gv = gtop;
     return;
   }
-  long i = (long) (y * inv_dy);
+  long i = static_cast<long>(y * inv_dy);
   if (i >= ntab) i = ntab - 1;
   const double *c = &tab[9 * i];
   const double y0 = double(i) * dy;
@@ -272,7 +289,7 @@ inline double MesoModel::J(double y) const
 {
   if (y <= ylow) return 1.0;
   if (y >= ytop) return 0.0;
-  long i = (long) (y * inv_dy);
+  long i = static_cast<long>(y * inv_dy);
   if (i >= ntab) i = ntab - 1;
   if (exact[i]) return Pc->sf(y);
   const double *c = &tab[9 * i];
@@ -290,7 +307,7 @@ double MesoModel::survival(double y) const
 // the anchor range [JLO, JHI] grows to include [lo, hi]
 void MesoModel::extend(double *s, long lo, long hi) const
 {
-  long jlo = (long) s[JLO], jhi = (long) s[JHI];
+  long jlo = static_cast<long>(s[JLO]), jhi = static_cast<long>(s[JHI]);
   if (jlo > jhi) {
     jlo = lo;
     jhi = hi;
@@ -355,7 +372,7 @@ double MesoModel::held_mass(const double *s, double *s1, long base) const
 {
   double hm = 0.0, h1 = 0.0;
   if (nrec > 0) {
-    const long g = (long) s[GH];
+    const long g = static_cast<long>(s[GH]);
     const double *recs = s + NHEAD + ncap;
     for (long gc = g - 2 * kheld - 1; gc <= g; ++gc) {
       const long sl = wrap(gc, nrec, inv_nrec);
@@ -380,8 +397,8 @@ double MesoModel::held_mass(const double *s, double *s1, long base) const
 
 void MesoModel::rebase(double *s) const
 {
-  const long base = (long) s[GH];
-  const long jlo = (long) s[JLO], jhi = (long) s[JHI];
+  const long base = static_cast<long>(s[GH]);
+  const long jlo = static_cast<long>(s[JLO]), jhi = static_cast<long>(s[JHI]);
   double M = 0.0, S1 = 0.0;
   for (long j = jlo; j <= jhi; ++j) {
     const double m = s[NHEAD + wrap(j, ncap, inv_ncap)];
@@ -406,7 +423,7 @@ void MesoModel::init(double *s, double X0) const
   std::fill(s, s + nwidth, 0.0);
   s[TAG] = tag;
   s[XABS] = s[HABS] = X0;
-  long base = (long) std::floor(X0 * inv_du);
+  long base = static_cast<long>(std::floor(X0 * inv_du));
   double xr = std::fma(-double(base), du, X0);
   while (xr < 0.0) xr = std::fma(-double(--base), du, X0);
   while (xr >= du) xr = std::fma(-double(++base), du, X0);
@@ -456,8 +473,8 @@ void MesoModel::pass(double *s, long g, long base, double hr, double end, double
                      double &W) const
 {
   B = W = 0.0;
-  long jlo = (long) s[JLO];
-  const long jhi = (long) s[JHI];
+  long jlo = static_cast<long>(s[JLO]);
+  const long jhi = static_cast<long>(s[JHI]);
   if (jlo > jhi) return;
   const double h = end - hr;
   double *ring = s + NHEAD;
@@ -488,7 +505,7 @@ void MesoModel::pass(double *s, long g, long base, double hr, double end, double
       Jv = 0.0;
       Gv = gt;
     } else {
-      long i = (long) (y * idy);
+      long i = static_cast<long>(y * idy);
       if (i >= ntb) i = ntb - 1;
       const double *c = tb + 9 * i;
       const double y0 = double(i) * ddy;
@@ -605,8 +622,8 @@ double MesoModel::reinject(double *s, long g, long base, double end, double rho,
 double MesoModel::forward(double *s, double X1, double eps) const
 {
   const double a = 1.0 + eps;
-  const long base = (long) s[BASE];
-  long g = (long) s[GH];
+  const long base = static_cast<long>(s[BASE]);
+  long g = static_cast<long>(s[GH]);
   double hr = std::fma(-double(base), du, s[HABS]);
   const double x1r = std::fma(-double(base), du, X1);
   double total = 0.0, pending = 0.0;
@@ -694,11 +711,6 @@ double MesoModel::detached(const double *s) const
   return s[DETACHED];
 }
 
-double MesoModel::broken(const double *s) const
-{
-  return s[LASTB];
-}
-
 double MesoModel::rate(const double *s) const
 {
   return s[LASTDX] != 0.0 ? s[LASTB] / std::fabs(s[LASTDX]) : 0.0;
@@ -708,15 +720,15 @@ double MesoModel::normalization_error(const double *s) const
 {
   double sum = 0.0;
   for (int i = 0; i < ncap; ++i) sum += s[NHEAD + i];
-  sum += held_mass(s, nullptr, (long) s[BASE]);
+  sum += held_mass(s, nullptr, static_cast<long>(s[BASE]));
   sum += s[DETACHED];
   return std::fabs(sum - 1.0);
 }
 
 void MesoModel::density(const double *s, std::vector<double> &u, std::vector<double> &q) const
 {
-  const long base = (long) s[BASE], g = (long) s[GH];
-  long jlo = (long) s[JLO], jhi = (long) s[JHI];
+  const long base = static_cast<long>(s[BASE]), g = static_cast<long>(s[GH]);
+  long jlo = static_cast<long>(s[JLO]), jhi = static_cast<long>(s[JHI]);
   if (jlo > jhi) {
     jlo = g;
     jhi = g;

@@ -1,4 +1,21 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package: one lambda_c-block of the far zone (paper Sec.
    "Far zone: Meso/macroscale friction", Eqs. crack.eq03x-crack.eq07, and
    "Elastic screening length", Eqs. scr.eq01-scr.eq05).
@@ -152,12 +169,21 @@ namespace feq {
 constexpr double MESO_GRID_SD_FRACTION = 0.25;
 constexpr int MESO_MAX_WIDTH = 65536;
 
+// the grid spacing du is unusable for the thresholds (its message starts
+// with "grid:"); fix eq/meso names its default grid as the cause when the
+// user did not set one
+class GridError : public SpecError {
+ public:
+  using SpecError::SpecError;
+};
+
 class MesoModel {
  public:
   // Pc: breaking thresholds; R: re-forming stretches (nullptr: contacts
   // never re-form); du: anchor grid spacing (keyword 'grid').
-  // Throws SpecError for a coarse or absurdly fine grid, for a missing or
-  // negative threshold distribution, for re-forming stretches beyond the
+  // Throws GridError for a coarse or absurdly fine grid (and for
+  // thresholds of zero width), SpecError for a missing or negative
+  // threshold distribution, for re-forming stretches beyond the
   // thresholds, and for start REFORM without R.
   MesoModel(DistributionPtr Pc, DistributionPtr R, double du,
             Crossing crossing = Crossing::EXACT, MEStart start = MEStart::RELAXED);
@@ -174,8 +200,8 @@ class MesoModel {
   // move the block from its stored X to X1 with screening factor eps
   // (>= 0); returns the probability mass broken in this move (broken
   // contacts per contact).  X1 == stored X: returns 0 and leaves the state
-  // untouched bitwise (broken() and rate() keep describing the last move
-  // that changed X).  Throws std::invalid_argument for a non-finite X1 or
+  // untouched bitwise (rate() keeps describing the last move that
+  // changed X).  Throws std::invalid_argument for a non-finite X1 or
   // eps < 0 (errors of the caller, not of the input).
   double advance(double *state, double X1, double eps = 0.0) const;
 
@@ -186,7 +212,6 @@ class MesoModel {
   double attached(const double *state) const;        // int Q du (grid + held)
   double held(const double *state) const;            // held part of attached()
   double detached(const double *state) const;        // broken for good (R null)
-  double broken(const double *state) const;          // mass broken in the last move
   double rate(const double *state) const;            // Gamma = broken / |dX| of the last move
                                                      // (0 after a move that stays below H)
   // |attached + detached - 1| summed from the arrays, O(width)

@@ -1,4 +1,21 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package: the global restart record of a package fix.
    LAMMPS-free.
 
@@ -22,13 +39,23 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace feq {
 
+// an unusable record; keyword(): the keyword whose signature differs when
+// only that is off (else empty)
 class RecordError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit RecordError(const std::string &what, std::string keyword = std::string()) :
+      std::runtime_error(what), kw(std::move(keyword))
+  {
+  }
+  const std::string &keyword() const { return kw; }
+
+ private:
+  std::string kw;
 };
 
 // "FEQE" and the layout version
@@ -66,7 +93,7 @@ inline std::vector<double> pack_record(const std::vector<double> &values, const 
 // the values of a record with nvalues values and a signature of
 // sig.hashes.size() keywords; RecordError when it is not such a record,
 // naming the first keyword whose hash differs when only that is off
-// (what() is then "keyword:<name>")
+// (its keyword())
 inline std::vector<double> unpack_record(const double *buf, int nvalues, const Signature &sig)
 {
   if (buf[0] != RECORD_MAGIC || buf[1] != RECORD_FORMAT)
@@ -83,7 +110,8 @@ inline std::vector<double> unpack_record(const double *buf, int nvalues, const S
                       std::to_string(ns) + " are expected (garbled, or written by another "
                       "version)");
   for (int k = 0; k < ns; k++)
-    if (s[1 + k] != sig.hashes[k]) throw RecordError("keyword:" + sig.keywords[k]);
+    if (s[1 + k] != sig.hashes[k])
+      throw RecordError("the record's " + sig.keywords[k] + " differs", sig.keywords[k]);
   return std::vector<double>(buf + 3, buf + 3 + nvalues);
 }
 

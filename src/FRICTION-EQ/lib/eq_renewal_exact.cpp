@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package: exact renewal solution (see eq_renewal_exact.h)
 ------------------------------------------------------------------------- */
 
@@ -33,7 +50,7 @@ double RenewalUniform::density(int n, double s) const
   if (t <= 0.0L || t >= n) return 0.0;
   if (t > 0.5L * n) t = n - t;    // symmetric: fewer, smaller terms
   long double sum = 0.0L, binom = 1.0L;
-  for (int k = 0; k <= (int) std::floor((double) t); ++k) {
+  for (int k = 0; k <= static_cast<int>(std::floor(static_cast<double>(t))); ++k) {
     sum += ((k & 1) ? -1.0L : 1.0L) * binom * std::pow(t - k, (long double) (n - 1));
     binom = binom * (n - k) / (k + 1);
   }
@@ -112,7 +129,7 @@ double RenewalUniform::moment(double X, int p) const
     // the kinks n a + k w of f_n within (lo, hi) only (k w < hi - n a)
     std::vector<double> breaks;
     const double kmax = std::min(double(n), std::floor((hi - n * a) / w) + 1.0);
-    for (int k = 0; k <= (int) kmax; ++k) breaks.push_back(n * a + k * w);
+    for (int k = 0; k <= static_cast<int>(kmax); ++k) breaks.push_back(n * a + k * w);
     breaks.push_back(X - a);
     breaks.push_back(X - b);
     sum += integrate([&](double s) { return density(n, s) * std::pow(X - s, p) * J(X - s); }, lo, hi,

@@ -1,4 +1,21 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    FRICTION-EQ package as a LAMMPS plugin: registers every style of the
    package with a LAMMPS that was built with the PLUGIN package and
    without FRICTION-EQ (plugin load frictioneqplugin.so, or the folder
@@ -52,15 +69,16 @@ struct Registrar {
   }
   template <class T> void fix(const char *name, const char *info) const
   {
-    add("fix", name, info, nullptr, (lammpsplugin_factory2 *) &fix_creator<T>);
+    add("fix", name, info, nullptr, reinterpret_cast<lammpsplugin_factory2 *>(&fix_creator<T>));
   }
   template <class T> void pair(const char *name, const char *info) const
   {
-    add("pair", name, info, (lammpsplugin_factory1 *) &pair_creator<T>, nullptr);
+    add("pair", name, info, reinterpret_cast<lammpsplugin_factory1 *>(&pair_creator<T>), nullptr);
   }
   template <class T> void command(const char *name, const char *info) const
   {
-    add("command", name, info, (lammpsplugin_factory1 *) &command_creator<T>, nullptr);
+    add("command", name, info, reinterpret_cast<lammpsplugin_factory1 *>(&command_creator<T>),
+        nullptr);
   }
 };
 }    // namespace
