@@ -207,103 +207,140 @@ const char *me_job_keywords()
          "snapshot, summary, exact, substrate";
 }
 
-MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &number,
-                   const FileLoader &load)
+namespace {
+
+// richardson keyword: not given (on with crossing exact), yes or no
+enum class Richardson { AUTO, YES, NO };
+
+// whether the job combines dx and dx/2 (Richardson) for this choice
+bool use_richardson(Richardson richardson, Crossing crossing)
 {
-  MEJob job;
-  job.reform.dist = make_delta(0.0);
-  job.reform.text = "delta 0";
-  job.stiffness.dist = make_delta(1.0);
-  job.stiffness.text = "constant";
-  bool have_threshold = false;
-  int richardson = -1;    // -1: not given (auto)
-  size_t pos = 0;
-  auto value = [&](const std::string &kw) -> const std::string & {
+  return richardson == Richardson::AUTO ? crossing == Crossing::EXACT
+                                        : richardson == Richardson::YES;
+}
+
+// the keyword arguments of a job, read one token at a time
+class JobArgs {
+ public:
+  JobArgs(const std::vector<std::string> &args_, const NumberParser &number_) :
+      args(args_), number(number_)
+  {
+  }
+
+  bool more() const { return pos < args.size(); }
+  const std::string &next() { return args[pos++]; }
+
+  // the next token: the value of keyword kw
+  const std::string &value(const std::string &kw)
+  {
     if (pos >= args.size()) throw SpecError(kw + ": missing value");
     return args[pos++];
-  };
-  auto number_of = [&](const std::string &kw) {
+  }
+
+  // the next token as a number
+  double number_of(const std::string &kw)
+  {
     const std::string &tok = value(kw);
     try {
       return number(tok);
     } catch (const SpecError &) {
       throw SpecError(kw + ": expected a number, got '" + tok + "'");
     }
-  };
+  }
+
   // an output file name; a keyword in its place means the name is missing
   // (it would otherwise be taken as the name and its values as keywords)
-  auto file = [&](const std::string &kw) -> const std::string & {
+  const std::string &file(const std::string &kw)
+  {
     if (pos < args.size() && is_keyword(args[pos]))
       throw SpecError(kw + ": missing file name before the keyword '" + args[pos] + "'");
     return value(kw);
-  };
-  while (pos < args.size()) {
-    const std::string kw = args[pos++];
-    if (kw == "threshold") {
-      job.threshold = parse_distribution(Role::THRESHOLD, args, pos, number, load);
-      have_threshold = true;
-    } else if (kw == "reform") {
-      job.reform = parse_distribution(Role::REFORM, args, pos, number, load);
-    } else if (kw == "stiffness") {
-      job.stiffness = parse_distribution(Role::STIFFNESS, args, pos, number, load);
-    } else if (kw == "dir") {
-      const std::string &v = value(kw);
-      if (v != "x" && v != "y" && v != "z")
-        throw SpecError("dir: unknown value '" + v + "'; allowed: x, y, z");
-    } else if (kw == "xmax") {
-      job.opt.Xmax = number_of(kw);
-      if (!(job.opt.Xmax > 0.0)) throw SpecError("xmax: must be > 0");
-    } else if (kw == "dx") {
-      job.opt.dx = number_of(kw);
-      if (!(job.opt.dx > 0.0)) throw SpecError("dx: must be > 0");
-    } else if (kw == "start") {
-      const std::string &v = value(kw);
-      if (v == "relaxed") job.opt.start = MEStart::RELAXED;
-      else if (v == "reform") job.opt.start = MEStart::REFORM;
-      else throw SpecError("start: unknown value '" + v + "'; allowed: relaxed, reform");
-    } else if (kw == "crossing") {
-      const std::string &v = value(kw);
-      if (v == "exact") job.opt.crossing = Crossing::EXACT;
-      else if (v == "step") job.opt.crossing = Crossing::STEP;
-      else throw SpecError("crossing: unknown value '" + v + "'; allowed: exact, step");
-    } else if (kw == "richardson") {
-      const std::string &v = value(kw);
-      if (v != "yes" && v != "no")
-        throw SpecError("richardson: unknown value '" + v + "'; allowed: yes, no");
-      richardson = (v == "yes") ? 1 : 0;
-    } else if (kw == "force") {
-      job.force_file = file(kw);
-    } else if (kw == "steady") {
-      job.steady_file = file(kw);
-    } else if (kw == "summary") {
-      job.summary_file = file(kw);
-    } else if (kw == "exact") {
-      job.exact_file = file(kw);
-    } else if (kw == "substrate") {
-      job.substrate_file = file(kw);
-      job.substrate_key = value(kw);
-      job.substrate_uc = number_of(kw);
-      if (!(job.substrate_uc > 0.0)) throw SpecError("substrate: uc must be > 0");
-    } else if (kw == "snapshot") {
-      const double X = number_of(kw);
-      job.snapshots.emplace_back(X, file(kw));
-      job.opt.snapshots.push_back(X);
-    } else {
-      throw SpecError("unknown keyword '" + kw + "'; allowed: " + me_job_keywords());
-    }
   }
-  if (!have_threshold)
-    throw SpecError(std::string("the threshold keyword is required; allowed styles: ") +
-                    role_styles(Role::THRESHOLD));
-  check_reform(*job.threshold.dist, job.reform);
-  // xmax on the grid: a whole number of steps of dx (Richardson needs the
-  // fine grid to end at the same X)
+
+  // a distribution of the given role from the next tokens
+  DistributionSpec distribution(Role role, const FileLoader &load)
+  {
+    return parse_distribution(role, args, pos, number, load);
+  }
+
+ private:
+  const std::vector<std::string> &args;
+  const NumberParser &number;
+  size_t pos = 0;
+};
+
+// reads the value of a solver keyword (dir, xmax, dx, start, crossing,
+// richardson) into job; false when kw is none of them
+bool read_solver_keyword(JobArgs &in, const std::string &kw, MEJob &job, Richardson &richardson)
+{
+  if (kw == "dir") {
+    const std::string &v = in.value(kw);
+    if (v != "x" && v != "y" && v != "z")
+      throw SpecError("dir: unknown value '" + v + "'; allowed: x, y, z");
+  } else if (kw == "xmax") {
+    job.opt.Xmax = in.number_of(kw);
+    if (!(job.opt.Xmax > 0.0)) throw SpecError("xmax: must be > 0");
+  } else if (kw == "dx") {
+    job.opt.dx = in.number_of(kw);
+    if (!(job.opt.dx > 0.0)) throw SpecError("dx: must be > 0");
+  } else if (kw == "start") {
+    const std::string &v = in.value(kw);
+    if (v == "relaxed") job.opt.start = MEStart::RELAXED;
+    else if (v == "reform") job.opt.start = MEStart::REFORM;
+    else throw SpecError("start: unknown value '" + v + "'; allowed: relaxed, reform");
+  } else if (kw == "crossing") {
+    const std::string &v = in.value(kw);
+    if (v == "exact") job.opt.crossing = Crossing::EXACT;
+    else if (v == "step") job.opt.crossing = Crossing::STEP;
+    else throw SpecError("crossing: unknown value '" + v + "'; allowed: exact, step");
+  } else if (kw == "richardson") {
+    const std::string &v = in.value(kw);
+    if (v != "yes" && v != "no")
+      throw SpecError("richardson: unknown value '" + v + "'; allowed: yes, no");
+    richardson = (v == "yes") ? Richardson::YES : Richardson::NO;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// reads the values of an output keyword (force, steady, summary, exact,
+// substrate, snapshot) into job; false when kw is none of them
+bool read_output_keyword(JobArgs &in, const std::string &kw, MEJob &job)
+{
+  if (kw == "force") {
+    job.force_file = in.file(kw);
+  } else if (kw == "steady") {
+    job.steady_file = in.file(kw);
+  } else if (kw == "summary") {
+    job.summary_file = in.file(kw);
+  } else if (kw == "exact") {
+    job.exact_file = in.file(kw);
+  } else if (kw == "substrate") {
+    job.substrate_file = in.file(kw);
+    job.substrate_key = in.value(kw);
+    job.substrate_uc = in.number_of(kw);
+    if (!(job.substrate_uc > 0.0)) throw SpecError("substrate: uc must be > 0");
+  } else if (kw == "snapshot") {
+    const double X = in.number_of(kw);
+    job.snapshots.emplace_back(X, in.file(kw));
+    job.opt.snapshots.push_back(X);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// xmax on the grid: a whole number of steps of dx (Richardson needs the
+// fine grid to end at the same X), within the solver's step limit
+void round_xmax(MEJob &job, Richardson richardson)
+{
   job.xmax_requested = job.opt.Xmax;
   // the number of steps in floating point first (xmax 1e300 must not
   // overflow the integer conversion); Richardson also solves at dx/2,
   // with twice the steps
   const double steps = job.opt.Xmax / job.opt.dx;
-  const bool rich = richardson < 0 ? job.opt.crossing == Crossing::EXACT : richardson == 1;
+  const bool rich = use_richardson(richardson, job.opt.crossing);
   if (!(steps <= (rich ? 0.5 : 1.0) * MAX_STEPS))
     throw SpecError("xmax: xmax/dx = " + fmtg(steps) + " steps (xmax = " + fmtg(job.opt.Xmax) +
                     ", dx = " + fmtg(job.opt.dx) + "), at most " +
@@ -316,14 +353,20 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
     throw SpecError("xmax: must be at least dx (xmax = " + num(job.opt.Xmax) + ", dx = " +
                     num(job.opt.dx) + ")");
   job.opt.Xmax = nsteps * job.opt.dx;
+}
+
+// the checks of a job that need all its keywords, sizes included, before
+// anything is allocated; sets job.richardson
+void check_job(MEJob &job, Richardson richardson)
+{
   if (job.opt.start == MEStart::REFORM && !job.reform.dist)
     throw SpecError("start reform: needs contacts that re-form (reform none given)");
-  if (richardson == 1 && job.opt.crossing == Crossing::STEP)
+  if (richardson == Richardson::YES && job.opt.crossing == Crossing::STEP)
     throw SpecError("richardson: only with crossing exact (the step model is first order by design)");
   // Richardson extrapolation of the second-order scheme by default: it
   // removes the O(dx^2) term at 5x the cost (measured: 100x smaller error
   // at equal run time, doc/src/eq_me.rst)
-  job.richardson = richardson < 0 ? job.opt.crossing == Crossing::EXACT : richardson == 1;
+  job.richardson = use_richardson(richardson, job.opt.crossing);
   if (!job.steady_file.empty() && !job.reform.dist)
     throw SpecError("steady: contacts that never re-form have no steady state");
   if (!job.exact_file.empty() && !exact_applies(job))
@@ -338,14 +381,60 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
   for (const auto &s : job.snapshots)
     if (!(s.first >= 0.0 && s.first <= job.opt.Xmax + 0.5 * job.opt.dx))
       throw SpecError("snapshot: X = " + num(s.first) + " outside [0, xmax]");
+}
+
+}    // namespace
+
+MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &number,
+                   const FileLoader &load)
+{
+  MEJob job;
+  job.reform.dist = make_delta(0.0);
+  job.reform.text = "delta 0";
+  job.stiffness.dist = make_delta(1.0);
+  job.stiffness.text = "constant";
+  bool have_threshold = false;
+  Richardson richardson = Richardson::AUTO;
+  JobArgs in(args, number);
+  while (in.more()) {
+    const std::string kw = in.next();
+    if (kw == "threshold") {
+      job.threshold = in.distribution(Role::THRESHOLD, load);
+      have_threshold = true;
+    } else if (kw == "reform") {
+      job.reform = in.distribution(Role::REFORM, load);
+    } else if (kw == "stiffness") {
+      job.stiffness = in.distribution(Role::STIFFNESS, load);
+    } else if (!read_solver_keyword(in, kw, job, richardson) &&
+               !read_output_keyword(in, kw, job)) {
+      throw SpecError("unknown keyword '" + kw + "'; allowed: " + me_job_keywords());
+    }
+  }
+  if (!have_threshold)
+    throw SpecError(std::string("the threshold keyword is required; allowed styles: ") +
+                    role_styles(Role::THRESHOLD));
+  check_reform(*job.threshold.dist, job.reform);
+  round_xmax(job, richardson);
+  check_job(job, richardson);
   return job;
 }
 
-MEReport run_me_job(const MEJob &job, bool write_files)
+namespace {
+
+// the solution of a job and what its report is made of
+struct JobSolution {
+  MEResult res;
+  SteadyState ss;
+  bool reform_as_point = false;    // reform too narrow: a point for the steady state
+  double f1 = 1.0;                 // <f> of the per-contact stiffness
+  double seconds = 0.0;
+  Extremum peak, kstar;
+};
+
+// solves the master equation, at dx and dx/2 combined with Richardson
+MEResult solve_job(const MEJob &job)
 {
   const MEOptions &opt = job.opt;
-  if (write_files) check_me_outputs(job);
-  const auto t0 = std::chrono::steady_clock::now();
   MEResult res = solve_master_equation(job.threshold.dist, job.reform.dist, opt);
   if (job.richardson) {
     MEOptions half = opt;
@@ -360,182 +449,258 @@ MEReport run_me_job(const MEJob &job, bool write_files)
       res.skew[k] = fine.skew[2 * k];
     }
   }
+  return res;
+}
+
+// the stationary solution of contacts that re-form (sol.ss, sol.reform_as_point)
+void solve_steady_state(const MEJob &job, JobSolution &sol)
+{
+  if (!job.reform.dist) return;
+  // a re-forming distribution narrower than 1e-12 of the thresholds'
+  // range (gaussian 0.1 1e-300) is a point for the stationary solution:
+  // its quadrature over [r_lo, r_hi] would collapse to 0/0
   const Distribution &Pc = *job.threshold.dist;
-  SteadyState ss;
-  bool reform_as_point = false;
-  if (job.reform.dist) {
-    // a re-forming distribution narrower than 1e-12 of the thresholds'
-    // range (gaussian 0.1 1e-300) is a point for the stationary solution:
-    // its quadrature over [r_lo, r_hi] would collapse to 0/0
-    const Distribution &R = *job.reform.dist;
-    double rlo = R.lower(), rhi = R.upper();
-    if (!std::isfinite(rlo)) rlo = R.quantile(1e-17);
-    if (!std::isfinite(rhi)) rhi = R.isf(1e-17);
-    reform_as_point = !R.is_point() && !(rhi - rlo > 1e-12 * Pc.effective_upper());
-    ss = reform_as_point ? steady_state(Pc, *make_delta(R.mean())) : steady_state(Pc, R);
-  }
+  const Distribution &R = *job.reform.dist;
+  double rlo = R.lower(), rhi = R.upper();
+  if (!std::isfinite(rlo)) rlo = R.quantile(1e-17);
+  if (!std::isfinite(rhi)) rhi = R.isf(1e-17);
+  sol.reform_as_point = !R.is_point() && !(rhi - rlo > 1e-12 * Pc.effective_upper());
+  sol.ss = sol.reform_as_point ? steady_state(Pc, *make_delta(R.mean())) : steady_state(Pc, R);
+}
 
-  // per-contact stiffness k_i = kc f: F scales with <f>, the spread of one
-  // contact's force is sqrt(<f^2><x^2> - <f>^2<x>^2)
+// per-contact stiffness k_i = kc f: F scales with <f>, the spread of one
+// contact's force is sqrt(<f^2><x^2> - <f>^2<x>^2)
+void scale_by_stiffness(const MEJob &job, JobSolution &sol)
+{
   const double f1 = job.stiffness.dist->mean(), f2 = job.stiffness.dist->second_moment();
-  if (!job.stiffness.constant()) {
-    for (size_t k = 0; k < res.F.size(); ++k) {
-      const double x1 = res.F[k], x2 = res.sd[k] * res.sd[k] + x1 * x1;
-      res.F[k] = f1 * x1;
-      res.sd[k] = std::sqrt(std::max(0.0, f2 * x2 - f1 * f1 * x1 * x1));
-    }
-    ss.F *= f1;
+  sol.f1 = f1;
+  if (job.stiffness.constant()) return;
+  MEResult &res = sol.res;
+  for (size_t k = 0; k < res.F.size(); ++k) {
+    const double x1 = res.F[k], x2 = res.sd[k] * res.sd[k] + x1 * x1;
+    res.F[k] = f1 * x1;
+    res.sd[k] = std::sqrt(std::max(0.0, f2 * x2 - f1 * f1 * x1 * x1));
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  sol.ss.F *= f1;
+}
 
-  MEReport rep;
-  auto &v = rep.values;
+// the "name value" results of the report (rep.values)
+void report_values(const MEJob &job, const JobSolution &sol, std::map<std::string, double> &v)
+{
+  const Distribution &Pc = *job.threshold.dist;
   v["threshold_mean"] = Pc.mean();
   v["threshold_sd"] = std::sqrt(std::max(0.0, Pc.variance()));
-  v["stiffness_mean"] = f1;
-  const Extremum peak = static_peak(res);
-  const Extremum kstar = critical_stiffness(res);
-  if (peak.found) {
-    v["static_peak"] = peak.value;
-    v["static_peak_X"] = peak.X;
+  v["stiffness_mean"] = sol.f1;
+  if (sol.peak.found) {
+    v["static_peak"] = sol.peak.value;
+    v["static_peak_X"] = sol.peak.X;
   }
-  v["kstar"] = kstar.value;
-  if (kstar.found) v["kstar_X"] = kstar.X;
-  v["force_at_xmax"] = res.F.back();
-  v["mass_error"] = res.max_mass_error;
-  v["seconds"] = seconds;
-  v["dx"] = opt.dx;
-  v["xmax"] = opt.Xmax;
+  v["kstar"] = sol.kstar.value;
+  if (sol.kstar.found) v["kstar_X"] = sol.kstar.X;
+  v["force_at_xmax"] = sol.res.F.back();
+  v["mass_error"] = sol.res.max_mass_error;
+  v["seconds"] = sol.seconds;
+  v["dx"] = job.opt.dx;
+  v["xmax"] = job.opt.Xmax;
   if (job.reform.dist) {
-    v["kinetic_force"] = ss.F;
-    v["steady_rate"] = ss.Gamma;
+    v["kinetic_force"] = sol.ss.F;
+    v["steady_rate"] = sol.ss.Gamma;
   }
+}
 
-  std::string &t = rep.text;
-  t += "FRICTION-EQ master equation of the EQ model (eq-me, eq/me)\n";
+// the lines of the report on the job and its grid (up to the static peak)
+std::string report_job_text(const MEJob &job, const JobSolution &sol, double threshold_sd)
+{
+  const MEOptions &opt = job.opt;
+  std::string t = "FRICTION-EQ master equation of the EQ model (eq-me, eq/me)\n";
   t += format("  threshold    %s   <x_s> = %.10g, sd = %.6g\n", job.threshold.text.c_str(),
-              Pc.mean(), v["threshold_sd"]);
+              job.threshold.dist->mean(), threshold_sd);
   t += format("  reform       %s\n", job.reform.text.c_str());
   if (!job.stiffness.constant())
     t += format("  stiffness    %s: <k_i> = %.10g k_c (F below includes it)\n",
-                job.stiffness.text.c_str(), f1);
+                job.stiffness.text.c_str(), sol.f1);
   t += format("  grid         dx = %g, X in [0, %g], %zu stretch points, start %s, crossing %s%s\n",
-              opt.dx, opt.Xmax, res.x.size(), opt.start == MEStart::RELAXED ? "relaxed" : "reform",
+              opt.dx, opt.Xmax, sol.res.x.size(),
+              opt.start == MEStart::RELAXED ? "relaxed" : "reform",
               opt.crossing == Crossing::EXACT ? "exact" : "step",
               job.richardson ? ", Richardson (dx, dx/2)" : "");
   if (std::fabs(job.xmax_requested - opt.Xmax) > 1e-12 * opt.Xmax)
     t += format("  NOTE         xmax %g rounded to %g, a whole number of steps dx\n",
                 job.xmax_requested, opt.Xmax);
-  const double sd = v["threshold_sd"];
+  const double sd = threshold_sd;
   if (opt.crossing == Crossing::EXACT && opt.dx > 0.05 * sd)
     t += format("  WARNING      dx = %g is coarse against the spread of the thresholds (sd = %g): "
                 "the error grows like dx^2; dx <= %g is recommended\n",
                 opt.dx, sd, 0.05 * sd);
-  if (peak.found)
-    t += format("  static peak  F_s/(N k_c) = %.10f at X = %.6f\n", peak.value, peak.X);
+  return t;
+}
+
+// the lines of the report on the results (static peak to run time)
+std::string report_result_text(const MEJob &job, const JobSolution &sol)
+{
+  const MEResult &res = sol.res;
+  std::string t;
+  if (sol.peak.found)
+    t += format("  static peak  F_s/(N k_c) = %.10f at X = %.6f\n", sol.peak.value, sol.peak.X);
   else
     t += "  static peak  none: F still increases at xmax\n";
   if (job.reform.dist)
-    t += format("  kinetic      F_k/(N k_c) = %.10f (stationary solution), Gamma_s = %.10f\n", ss.F,
-                ss.Gamma);
-  if (reform_as_point)
+    t += format("  kinetic      F_k/(N k_c) = %.10f (stationary solution), Gamma_s = %.10f\n",
+                sol.ss.F, sol.ss.Gamma);
+  if (sol.reform_as_point)
     t += format("  NOTE         reform %s is narrower than 1e-12 of the thresholds' range: the "
                 "stationary solution takes it as delta %g\n", job.reform.text.c_str(),
                 job.reform.dist->mean());
   t += format("  F(xmax)      F/(N k_c)   = %.10f\n", res.F.back());
-  if (kstar.found)
-    t += format("  stiffness    K*/K_s      = %.10f at X = %.6f\n", kstar.value, kstar.X);
+  if (sol.kstar.found)
+    t += format("  stiffness    K*/K_s      = %.10f at X = %.6f\n", sol.kstar.value, sol.kstar.X);
   else
     t += "  stiffness    K*/K_s      = 0: F never decreases within [0, xmax]\n";
   t += format("  probability  max |int Q - 1| = %.3g\n", res.max_mass_error);
-  t += format("  time         %.3f s\n", seconds);
+  t += format("  time         %.3f s\n", sol.seconds);
+  return t;
+}
 
-  if (!job.exact_file.empty()) {
-    RenewalUniform exact(Pc.lower(), Pc.upper());
-    std::ofstream out;
-    if (write_files) {
-      out = open_out("exact", job.exact_file);
-      out << "# exact renewal solution: X <x> <x^2> Gamma; " << job.threshold.text << "\n";
-    }
-    double maxerr = 0.0;
-    // the exact solution costs ~1e4 times more per point: every 0.01 in X
-    const size_t stride = std::max<size_t>(1, static_cast<size_t>(std::llround(0.01 / opt.dx)));
-    for (size_t k = 0; k < res.X.size(); k += stride) {
-      const double m1 = exact.mean_stretch(res.X[k]);
-      if (write_files)
-        out << res.X[k] << " " << m1 << " " << exact.second_moment(res.X[k]) << " "
-            << exact.rate(res.X[k]) << "\n";
-      maxerr = std::max(maxerr, std::fabs(res.F[k] - f1 * m1));    // F includes <f>
-    }
-    v["exact_max_error"] = maxerr;
-    t += format("  exact        max |F_ME - F_exact|/(N k_c) = %.3e\n", maxerr);
+// the exact renewal solution against the ME (exact keyword): its table
+// (when write_files), exact_max_error and its report line
+void compare_exact(const MEJob &job, const JobSolution &sol, bool write_files, MEReport &rep)
+{
+  const Distribution &Pc = *job.threshold.dist;
+  const MEResult &res = sol.res;
+  RenewalUniform exact(Pc.lower(), Pc.upper());
+  std::ofstream out;
+  if (write_files) {
+    out = open_out("exact", job.exact_file);
+    out << "# exact renewal solution: X <x> <x^2> Gamma; " << job.threshold.text << "\n";
   }
-  if (!write_files) return rep;
+  double maxerr = 0.0;
+  // the exact solution costs ~1e4 times more per point: every 0.01 in X
+  const size_t stride = std::max<size_t>(1, static_cast<size_t>(std::llround(0.01 / job.opt.dx)));
+  for (size_t k = 0; k < res.X.size(); k += stride) {
+    const double m1 = exact.mean_stretch(res.X[k]);
+    if (write_files)
+      out << res.X[k] << " " << m1 << " " << exact.second_moment(res.X[k]) << " "
+          << exact.rate(res.X[k]) << "\n";
+    maxerr = std::max(maxerr, std::fabs(res.F[k] - sol.f1 * m1));    // F includes <f>
+  }
+  rep.values["exact_max_error"] = maxerr;
+  rep.text += format("  exact        max |F_ME - F_exact|/(N k_c) = %.3e\n", maxerr);
+}
 
-  if (!job.force_file.empty()) {
-    std::ofstream out = open_out("force", job.force_file);
-    out << "# eq-me: threshold " << job.threshold.text << ", reform " << job.reform.text << ", dx "
-        << opt.dx << "\n# X F/(N*kc) sd(x) Gamma attached skewness(x)\n";
-    for (size_t k = 0; k < res.X.size(); ++k)
-      out << res.X[k] << " " << res.F[k] << " " << res.sd[k] << " " << res.Gamma[k] << " "
-          << res.attached[k] << " " << res.skew[k] << "\n";
-  }
-  if (!job.steady_file.empty()) {
-    std::ofstream out = open_out("steady", job.steady_file);
-    out << "# eq-me steady state: threshold " << job.threshold.text << ", reform "
-        << job.reform.text << "\n# F_k/(N*kc) = " << ss.F << ", Gamma_s = " << ss.Gamma
-        << "\n# x Q_s(x)\n";
-    for (size_t i = 0; i < ss.x.size(); ++i) out << ss.x[i] << " " << ss.Q[i] << "\n";
-  }
+// force table: X F/(N*kc) sd(x) Gamma attached skewness(x)
+void write_force(const MEJob &job, const MEResult &res)
+{
+  std::ofstream out = open_out("force", job.force_file);
+  out << "# eq-me: threshold " << job.threshold.text << ", reform " << job.reform.text << ", dx "
+      << job.opt.dx << "\n# X F/(N*kc) sd(x) Gamma attached skewness(x)\n";
+  for (size_t k = 0; k < res.X.size(); ++k)
+    out << res.X[k] << " " << res.F[k] << " " << res.sd[k] << " " << res.Gamma[k] << " "
+        << res.attached[k] << " " << res.skew[k] << "\n";
+}
+
+// steady-state table: x Q_s(x)
+void write_steady(const MEJob &job, const SteadyState &ss)
+{
+  std::ofstream out = open_out("steady", job.steady_file);
+  out << "# eq-me steady state: threshold " << job.threshold.text << ", reform "
+      << job.reform.text << "\n# F_k/(N*kc) = " << ss.F << ", Gamma_s = " << ss.Gamma
+      << "\n# x Q_s(x)\n";
+  for (size_t i = 0; i < ss.x.size(); ++i) out << ss.x[i] << " " << ss.Q[i] << "\n";
+}
+
+// snapshot tables: x Q(x;X), one per snapshot the solver recorded
+void write_snapshots(const MEJob &job, const MEResult &res)
+{
   for (const auto &s : job.snapshots) {
     size_t idx = res.snapX.size();
     for (size_t i = 0; i < res.snapX.size(); ++i)
-      if (std::fabs(res.snapX[i] - s.first) <= 0.5 * opt.dx) idx = i;
+      if (std::fabs(res.snapX[i] - s.first) <= 0.5 * job.opt.dx) idx = i;
     if (idx == res.snapX.size()) continue;
     std::ofstream out = open_out("snapshot", s.second);
     out << "# eq-me Q(x;X) at X = " << res.snapX[idx] << "\n# x Q(x;X)\n";
     for (size_t j = 0; j < res.x.size(); ++j)
       if (res.snapQ[idx][j] != 0.0) out << res.x[j] << " " << res.snapQ[idx][j] << "\n";
   }
-  if (!job.substrate_file.empty()) {
-    // F(X)/(N k_c) on [0, uc]: the grid points below uc (X = 0 always, also
-    // for a uc below 1e-9 dx), then uc itself (linear interpolation between
-    // the two grid points around it)
-    std::vector<double> u, phi;
-    const double uc = job.substrate_uc;
-    for (size_t k = 0; k < res.X.size() && (k == 0 || res.X[k] < uc - 1e-9 * opt.dx); ++k) {
-      u.push_back(res.X[k]);
-      phi.push_back(res.F[k]);
-    }
-    const size_t k = u.size();
-    double last = res.F.back();
-    if (k < res.X.size()) {
-      const double t = (uc - res.X[k - 1]) / (res.X[k] - res.X[k - 1]);
-      last = res.F[k - 1] + t * (res.F[k] - res.F[k - 1]);
-    }
-    u.push_back(uc);
-    phi.push_back(last);
-    const std::string comment =
-        "FK-ME substrate shape phi(u) = F(u)/(N k_c) of a rigid block from the master equation\n"
-        "(eq-me / eq/me): threshold " + job.threshold.text + ", reform " + job.reform.text +
-        ", stiffness " + job.stiffness.text + ", start " +
-        (opt.start == MEStart::RELAXED ? "relaxed" : "reform") + ", dx " + format("%g", opt.dx) +
-        (job.richardson ? " (Richardson)" : "") + "\nperiod uc = " + format("%g", uc) +
-        "; use: fix ID group eq/substrate kc table FILE " + job.substrate_key + "\ncolumns: index u phi(u)";
-    // validated as fix eq/substrate will read it
-    SubstrateShape::table(u, phi, job.substrate_file + " " + job.substrate_key);
-    std::ofstream out = open_out("substrate", job.substrate_file);
-    out << substrate_table_text(job.substrate_key, u, phi, comment);
-    t += format("  substrate    %s %s: phi(u) on [0, %g], %zu points, max phi = %.6f\n",
+}
+
+// F(X)/(N k_c) on [0, uc]: the grid points below uc (X = 0 always, also
+// for a uc below 1e-9 dx), then uc itself (linear interpolation between
+// the two grid points around it)
+void substrate_shape(const MEJob &job, const MEResult &res, std::vector<double> &u,
+                     std::vector<double> &phi)
+{
+  const double uc = job.substrate_uc;
+  for (size_t k = 0; k < res.X.size() && (k == 0 || res.X[k] < uc - 1e-9 * job.opt.dx); ++k) {
+    u.push_back(res.X[k]);
+    phi.push_back(res.F[k]);
+  }
+  const size_t k = u.size();
+  double last = res.F.back();
+  if (k < res.X.size()) {
+    const double t = (uc - res.X[k - 1]) / (res.X[k] - res.X[k - 1]);
+    last = res.F[k - 1] + t * (res.F[k] - res.F[k - 1]);
+  }
+  u.push_back(uc);
+  phi.push_back(last);
+}
+
+// substrate table for fix eq/substrate; returns its report line
+std::string write_substrate(const MEJob &job, const MEResult &res)
+{
+  const MEOptions &opt = job.opt;
+  std::vector<double> u, phi;
+  substrate_shape(job, res, u, phi);
+  const double uc = job.substrate_uc;
+  const std::string comment =
+      "FK-ME substrate shape phi(u) = F(u)/(N k_c) of a rigid block from the master equation\n"
+      "(eq-me / eq/me): threshold " + job.threshold.text + ", reform " + job.reform.text +
+      ", stiffness " + job.stiffness.text + ", start " +
+      (opt.start == MEStart::RELAXED ? "relaxed" : "reform") + ", dx " + format("%g", opt.dx) +
+      (job.richardson ? " (Richardson)" : "") + "\nperiod uc = " + format("%g", uc) +
+      "; use: fix ID group eq/substrate kc table FILE " + job.substrate_key + "\ncolumns: index u phi(u)";
+  // validated as fix eq/substrate will read it
+  SubstrateShape::table(u, phi, job.substrate_file + " " + job.substrate_key);
+  std::ofstream out = open_out("substrate", job.substrate_file);
+  out << substrate_table_text(job.substrate_key, u, phi, comment);
+  return format("  substrate    %s %s: phi(u) on [0, %g], %zu points, max phi = %.6f\n",
                 job.substrate_file.c_str(), job.substrate_key.c_str(), uc, u.size(),
                 *std::max_element(phi.begin(), phi.end()));
-  }
-  if (!job.summary_file.empty()) {
-    std::ofstream out = open_out("summary", job.summary_file);
-    out << std::setprecision(15);
-    for (const auto &kv : v) out << kv.first << " " << kv.second << "\n";
-  }
+}
+
+// summary file: "name value" lines of the report's values
+void write_summary(const MEJob &job, const std::map<std::string, double> &v)
+{
+  std::ofstream out = open_out("summary", job.summary_file);
+  out << std::setprecision(15);
+  for (const auto &kv : v) out << kv.first << " " << kv.second << "\n";
+}
+
+}    // namespace
+
+MEReport run_me_job(const MEJob &job, bool write_files)
+{
+  if (write_files) check_me_outputs(job);
+  const auto t0 = std::chrono::steady_clock::now();
+  JobSolution sol;
+  sol.res = solve_job(job);
+  solve_steady_state(job, sol);
+  scale_by_stiffness(job, sol);
+  sol.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  sol.peak = static_peak(sol.res);
+  sol.kstar = critical_stiffness(sol.res);
+
+  MEReport rep;
+  report_values(job, sol, rep.values);
+  rep.text = report_job_text(job, sol, rep.values["threshold_sd"]);
+  rep.text += report_result_text(job, sol);
+  if (!job.exact_file.empty()) compare_exact(job, sol, write_files, rep);
+  if (!write_files) return rep;
+
+  if (!job.force_file.empty()) write_force(job, sol.res);
+  if (!job.steady_file.empty()) write_steady(job, sol.ss);
+  write_snapshots(job, sol.res);
+  if (!job.substrate_file.empty()) rep.text += write_substrate(job, sol.res);
+  if (!job.summary_file.empty()) write_summary(job, rep.values);
   return rep;
 }
 
