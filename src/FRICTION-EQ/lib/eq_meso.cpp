@@ -91,6 +91,25 @@ double round_down4(double v)
   return std::floor(v / p * (1.0 + 1e-12)) * p;
 }
 
+// one interval of the table of J: the cubic through f0..f3 at y0 + q dy/3,
+// q = 0..3 (c[0..3]), and the quartic of its integral G from the node value
+// gnode (c[4..8]); gnode moves on to the end of the interval
+void fit_interval(double *c, double f0, double f1, double f2, double f3, double dy, double &gnode)
+{
+  const double d1 = f1 - f0, d2 = f2 - 2.0 * f1 + f0, d3 = f3 - 3.0 * f2 + 3.0 * f1 - f0;
+  const double h = dy / 3.0;
+  c[0] = f0;
+  c[1] = (d1 - 0.5 * d2 + d3 / 3.0) / h;
+  c[2] = (0.5 * d2 - 0.5 * d3) / (h * h);
+  c[3] = (d3 / 6.0) / (h * h * h);
+  c[4] = gnode;
+  c[5] = c[0];
+  c[6] = c[1] / 2.0;
+  c[7] = c[2] / 3.0;
+  c[8] = c[3] / 4.0;
+  gnode += dy * (c[5] + dy * (c[6] + dy * (c[7] + dy * c[8])));
+}
+
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
@@ -105,6 +124,22 @@ MesoModel::MesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_, Crossi
                      MEStart start_) :
     Pc(std::move(Pc_)), R(std::move(R_)), du(du_), inv_du(1.0 / du_), crossing(crossing_),
     start(start_)
+{
+  check_inputs();
+  ylow = std::max(0.0, Pc->lower());
+  ytop = std::isfinite(Pc->upper()) ? Pc->upper() : Pc->isf(TAIL);
+  set_reform_support();
+  if (width_bound(du) > double(MESO_MAX_WIDTH))
+    throw GridError("grid: spacing " + fmt(du) + " needs about " + fmt(width_bound(du)) +
+                    " doubles per block (limit " + std::to_string(MESO_MAX_WIDTH) +
+                    "); use a spacing >= " + fmt(min_grid()));
+  set_reform_lines();
+  set_state_layout();
+  set_survival_table();
+}
+
+// the thresholds, the grid spacing against them, R and the start
+void MesoModel::check_inputs() const
 {
   if (!Pc) throw SpecError("threshold: missing threshold distribution");
   if (!(Pc->lower() >= 0.0))
@@ -124,63 +159,73 @@ MesoModel::MesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_, Crossi
   if (start == MEStart::REFORM && !R)
     throw SpecError("start: 'reform' needs a reform distribution (reform none given); allowed: "
                     "relaxed");
+}
 
-  ylow = std::max(0.0, Pc->lower());
-  ytop = std::isfinite(Pc->upper()) ? Pc->upper() : Pc->isf(TAIL);
-
-  // support of R (cut at TAIL like the ME solver) and the width check,
-  // before anything of the grid's size is allocated
+// support of R (cut at TAIL like the ME solver; 0 when R null), needed by
+// the width check before anything of the grid's size is allocated
+void MesoModel::set_reform_support()
+{
   rsup_lo = rsup_hi = 0.0;
-  if (R) {
-    rsup_lo = R->is_point() ? R->mean() : R->lower();
-    rsup_hi = R->is_point() ? R->mean() : R->upper();
-    if (!std::isfinite(rsup_lo)) rsup_lo = R->quantile(TAIL);
-    if (!std::isfinite(rsup_hi)) rsup_hi = R->isf(TAIL);
-  }
-  if (width_bound(du) > double(MESO_MAX_WIDTH))
-    throw GridError("grid: spacing " + fmt(du) + " needs about " + fmt(width_bound(du)) +
-                    " doubles per block (limit " + std::to_string(MESO_MAX_WIDTH) +
-                    "); use a spacing >= " + fmt(min_grid()));
+  if (!R) return;
+  rsup_lo = R->is_point() ? R->mean() : R->lower();
+  rsup_hi = R->is_point() ? R->mean() : R->upper();
+  if (!std::isfinite(rsup_lo)) rsup_lo = R->quantile(TAIL);
+  if (!std::isfinite(rsup_hi)) rsup_hi = R->isf(TAIL);
+}
 
-  // R on the grid r_k = k du, hat weights (mass and mean exact), as in the
-  // master-equation solver
+// R on the grid r_k = k du, hat weights (mass and mean exact), as in the
+// master-equation solver: (k, weight) pairs, not yet normalised
+std::vector<std::pair<long, double>> MesoModel::reform_weights() const
+{
   std::vector<std::pair<long, double>> w;
-  if (R) {
-    if (R->is_point()) {
-      const double f = R->mean() * inv_du;
-      const long k = static_cast<long>(std::floor(f));
-      const double t = f - double(k);
-      w.push_back({k, 1.0 - t});
-      w.push_back({k + 1, t});
+  if (R->is_point()) {
+    const double f = R->mean() * inv_du;
+    const long k = static_cast<long>(std::floor(f));
+    const double t = f - double(k);
+    w.push_back({k, 1.0 - t});
+    w.push_back({k + 1, t});
+    return w;
+  }
+  const long klo = static_cast<long>(std::floor(rsup_lo * inv_du));
+  const long khi = static_cast<long>(std::ceil(rsup_hi * inv_du));
+  std::vector<double> wk(khi - klo + 2, 0.0);
+  for (long k = klo; k <= khi; ++k) {
+    const double a = double(k) * du, b = double(k + 1) * du;
+    const double mass = R->cdf(b) - R->cdf(a);
+    if (!(mass > 0.0)) continue;
+    const double m1 = R->partial_mean(a, b);
+    const double right = std::min(mass, std::max(0.0, (m1 - a * mass) * inv_du));
+    wk[k - klo] += mass - right;
+    wk[k - klo + 1] += right;
+  }
+  for (size_t i = 0; i < wk.size(); ++i) w.push_back({klo + long(i), wk[i]});
+  return w;
+}
+
+// the normalised grid lines of R: r >= 0 re-form onto the grid (lines),
+// r < 0 are held (hlines, hold_w, hold_wc)
+void MesoModel::set_reform_lines()
+{
+  if (!R) return;
+  const std::vector<std::pair<long, double>> w = reform_weights();
+  double sum = 0.0;
+  for (auto &p : w) sum += p.second;
+  for (auto &p : w) {
+    if (!(p.second > 0.0)) continue;
+    const Line L{p.first, p.second / sum};
+    if (L.k < 0) {
+      hlines.push_back(L);
+      hold_w += L.w;
+      hold_wc += L.w * double(-L.k);
     } else {
-      const long klo = static_cast<long>(std::floor(rsup_lo * inv_du));
-      const long khi = static_cast<long>(std::ceil(rsup_hi * inv_du));
-      std::vector<double> wk(khi - klo + 2, 0.0);
-      for (long k = klo; k <= khi; ++k) {
-        const double a = double(k) * du, b = double(k + 1) * du;
-        const double mass = R->cdf(b) - R->cdf(a);
-        if (!(mass > 0.0)) continue;
-        const double m1 = R->partial_mean(a, b);
-        const double right = std::min(mass, std::max(0.0, (m1 - a * mass) * inv_du));
-        wk[k - klo] += mass - right;
-        wk[k - klo + 1] += right;
-      }
-      for (size_t i = 0; i < wk.size(); ++i) w.push_back({klo + long(i), wk[i]});
-    }
-    double sum = 0.0;
-    for (auto &p : w) sum += p.second;
-    for (auto &p : w) {
-      if (!(p.second > 0.0)) continue;
-      const Line L{p.first, p.second / sum};
-      if (L.k < 0) {
-        hlines.push_back(L);
-        hold_w += L.w;
-        hold_wc += L.w * double(-L.k);
-      } else {
-        lines.push_back(L);
-      }
+      lines.push_back(L);
     }
   }
+}
+
+// sizes of the block state: anchors, held records, width and tag
+void MesoModel::set_state_layout()
+{
   kheld = 0;
   long kmax = 0;
   for (const Line &L : hlines) kheld = std::max(kheld, int(-L.k));
@@ -194,8 +239,11 @@ MesoModel::MesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_, Crossi
   inv_nrec = nrec > 0 ? 1.0 / nrec : 0.0;
   nwidth = NHEAD + ncap + 2 * nrec;
   tag = 7.0e9 + double(nwidth) + 1e-3 * double(kheld);
+}
 
-  // table of J and G on y_i = i dy
+// table of J and G on y_i = i dy (see the header comment), and G(ytop)
+void MesoModel::set_survival_table()
+{
   dy = du / TABLE_REFINE;
   inv_dy = 1.0 / dy;
   ntab = static_cast<long>(std::ceil(ytop * inv_dy)) + 1;
@@ -220,18 +268,7 @@ MesoModel::MesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_, Crossi
     // cubic through the exact values at y0 + q dy/3, q = 0..3
     const double f0 = Jx(y0), f1 = Jx(y0 + dy / 3.0), f2 = Jx(y0 + 2.0 * dy / 3.0),
                  f3 = Jx(y0 + dy);
-    const double d1 = f1 - f0, d2 = f2 - 2.0 * f1 + f0, d3 = f3 - 3.0 * f2 + 3.0 * f1 - f0;
-    const double h = dy / 3.0;
-    c[0] = f0;
-    c[1] = (d1 - 0.5 * d2 + d3 / 3.0) / h;
-    c[2] = (0.5 * d2 - 0.5 * d3) / (h * h);
-    c[3] = (d3 / 6.0) / (h * h * h);
-    c[4] = gnode;
-    c[5] = c[0];
-    c[6] = c[1] / 2.0;
-    c[7] = c[2] / 3.0;
-    c[8] = c[3] / 4.0;
-    gnode += dy * (c[5] + dy * (c[6] + dy * (c[7] + dy * c[8])));
+    fit_interval(c, f0, f1, f2, f3, dy, gnode);
   }
   double jt;
   gtop = 0.0;

@@ -160,6 +160,7 @@
 #include "eq_distribution.h"
 #include "eq_master_equation.h"    // Crossing, MEStart
 
+#include <utility>
 #include <vector>
 
 namespace feq {
@@ -262,6 +263,14 @@ class MesoModel {
   void lookup(double y, double &J, double &G) const;
   double J(double y) const;
   double width_bound(double d) const;
+
+  // construction steps
+  void check_inputs() const;
+  void set_reform_support();
+  std::vector<std::pair<long, double>> reform_weights() const;
+  void set_reform_lines();
+  void set_state_layout();
+  void set_survival_table();
 
   // state helpers
   double forward(double *s, double X1, double eps) const;
