@@ -82,8 +82,14 @@ using namespace LAMMPS_NS;
 namespace {
 constexpr double NOT_COUPLED = std::numeric_limits<double>::quiet_NaN();
 // distances within this relative margin of the cutoff count as inside, so
-// a lattice shell at exactly rcut = lambda_c is included
-constexpr double CUT_MARGIN = 1.0e-12;
+// that a lattice shell at exactly rcut = lambda_c is included for the whole
+// run: integrating the positions adds a rounding of up to ulp(|x|)/2 per
+// step to each atom, different for each, so the distances of a rigidly
+// moving lattice wander (1e-12 of rcut = 3 after a few 1e3 steps at
+// |x| ~ 60 was crossed: pairs of the shell dropped at the next list build,
+// a change of h by k(rcut) |dq|, 1 % of h); 1e-8 covers 1e6 steps at
+// |x| = 100 rcut in the worst case, and no physics lives at that scale
+constexpr double CUT_MARGIN = 1.0e-8;
 // two coupled atoms closer than this fraction of their cutoff are at one
 // place (k ~ 1/r: 1e10 times its value at the cutoff)
 constexpr double OVERLAP = 1.0e-10;

@@ -39,9 +39,9 @@ import eqtools
 
 INPUTS = Path(__file__).resolve().parent / "inputs"
 EPS = np.finfo(float).eps
-# the cutoff margin of pair eq/elastic: distances within 1e-12 (relative)
+# the cutoff margin of pair eq/elastic: distances within 1e-8 (relative)
 # of rcut count as inside
-CUT_MARGIN = 1e-12
+CUT_MARGIN = 1e-8
 
 # ---------------------------------------------------------------- geometry
 
