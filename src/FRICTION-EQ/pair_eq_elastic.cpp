@@ -98,9 +98,6 @@ constexpr double OVERLAP = 1.0e-10;
 constexpr double CHANGE_MAX = 1.0e6;
 // default number of field updates between two drift checks
 constexpr int CHECK_DEFAULT = 1000;
-// atoms count as moved rigidly when their displacements since the last
-// update differ by less than this many units of rounding of the positions
-constexpr double UNIFORM_ULPS = 8.0;
 const char *USAGE = "expected 'pair_coeff I J ftilde lambda_c [rcut]' or "
                     "'pair_coeff I J table FILE KEYWORD [rcut]'";
 }    // namespace
@@ -795,32 +792,6 @@ void PairEQElastic::follow(EQCoordinateSource *src, bool count)
     if (count) ++n_nonuniform;
     rebuild(false);    // k_ij at the atoms' new distances
   }
-}
-
-// the displacements of the atoms since xq (which follows), their spread
-// along each direction and the size of the coordinates (for the rounding)
-void PairEQElastic::Spread::add(const double *x, double *x0)
-{
-  for (int a = 0; a < 3; a++) {
-    const double del = x[a] - x0[a];
-    lo[a] = del < lo[a] ? del : lo[a];
-    hi[a] = del > hi[a] ? del : hi[a];
-    const double ax = std::fabs(x[a]);
-    xmax = ax > xmax ? ax : xmax;
-    x0[a] = x[a];
-  }
-}
-
-// all atoms moved by the same vector, to the rounding of the positions
-bool PairEQElastic::Spread::rigid() const
-{
-  const double eps = std::numeric_limits<double>::epsilon();
-  for (int a = 0; a < 3; a++) {
-    if (hi[a] < lo[a]) continue;    // no atom
-    const double tol = UNIFORM_ULPS * eps * (xmax + std::fmax(std::fabs(lo[a]), std::fabs(hi[a])));
-    if (hi[a] - lo[a] > tol) return false;
-  }
-  return true;
 }
 
 /* ----------------------------------------------------------------------

@@ -43,6 +43,7 @@ PairStyle(eq/elastic,PairEQElastic);
 #include "eq_kernel.h"
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -108,8 +109,36 @@ class PairEQElastic : public Pair, public EQElasticField {
   struct Spread {
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     double xmax = 0.0;
-    void add(const double *x, double *x0);
-    bool rigid() const;
+    // atoms count as moved rigidly when their displacements differ by less
+    // than this many units of rounding of the positions
+    static constexpr double ULPS = 8.0;
+    // add() and rigid() are defined here to be inlined into the update
+    // loops: a local Spread whose address never leaves the function keeps
+    // lo, hi and xmax in registers (the stores to x0 cannot reach it).
+    // add(): the displacement x - x0 of one atom (x0 then follows x), and
+    // the size of its coordinates (for the rounding)
+    void add(const double *x, double *x0)
+    {
+      for (int a = 0; a < 3; a++) {
+        const double del = x[a] - x0[a];
+        lo[a] = del < lo[a] ? del : lo[a];
+        hi[a] = del > hi[a] ? del : hi[a];
+        const double ax = std::fabs(x[a]);
+        xmax = ax > xmax ? ax : xmax;
+        x0[a] = x[a];
+      }
+    }
+    // all atoms moved by the same vector, to the rounding of the positions
+    bool rigid() const
+    {
+      const double eps = std::numeric_limits<double>::epsilon();
+      for (int a = 0; a < 3; a++) {
+        if (hi[a] < lo[a]) continue;    // no atom
+        const double tol = ULPS * eps * (xmax + std::fmax(std::fabs(lo[a]), std::fabs(hi[a])));
+        if (hi[a] - lo[a] > tol) return false;
+      }
+      return true;
+    }
   };
 
   // coupled pairs of the current neighbor list: atom i's partners are
