@@ -119,7 +119,8 @@ feq::FileLoader EQUtil::file_loader(LAMMPS *lmp)
 /* ---------------------------------------------------------------------- */
 
 EQUtil::Unwrap::Unwrap(Atom *atom, Domain *domain_, int dir_) :
-    domain(domain_), x(atom->x), image(atom->image), dir(dir_)
+    domain(domain_), x(atom->x), xdir(atom->x ? atom->x[0] + dir_ : nullptr), image(atom->image),
+    dir(dir_)
 {
   bits = dir == 0 ? 0 : (dir == 1 ? IMGBITS : IMG2BITS);
   prd = domain->prd[dir];

@@ -79,8 +79,15 @@ namespace EQUtil {
     double operator()(int i) const
     {
       if (triclinic) return unmap(i);
+      return orthogonal_coordinate(i);
+    }
+    // operator() in an orthogonal box, with no call: for loops that keep
+    // their sums in registers (orthogonal() says whether it applies)
+    bool orthogonal() const { return !triclinic; }
+    double orthogonal_coordinate(int i) const
+    {
       const int n = int((image[i] >> bits) & IMGMASK) - IMGMAX;
-      return x[i][dir] + n * prd;
+      return xdir[3 * i] + n * prd;
     }
     // a stretch x_u - anchor, known to be far below IMGMAX box lengths:
     // a jump by whole wrap lengths is undone
@@ -107,6 +114,7 @@ namespace EQUtil {
    private:
     Domain *domain;
     double **x;
+    const double *xdir;    // &x[0][dir]: LAMMPS' x is one block of 3 nmax doubles
     const imageint *image;
     int dir, bits;
     double prd, wrap;

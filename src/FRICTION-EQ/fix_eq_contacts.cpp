@@ -461,59 +461,70 @@ void FixEQContacts::post_run()
 
 /* ----------------------------------------------------------------------
    contact forces -k_i s_i and the sums of the output; breaking (without
-   interaction: each contact on its own) when allowed
+   interaction: each contact on its own) when allowed.  One pass in index
+   order; a contact that forms or breaks goes out of line (settle()), and
+   the rest of the loop makes no call and reads everything by offset from
+   local copies that no store to the rows can alias, so that its sums and
+   pointers stay in registers (issue 24: 8.0 -> 5.2 ns per contact-step,
+   the same numbers to the last bit)
 ------------------------------------------------------------------------- */
 
 void FixEQContacts::apply(bool allow_breaks)
 {
-  double *const *const f = atom->f;
-  const int *const mask = atom->mask;
-  const tagint *const tag = atom->tag;
-  const int nlocal = atom->nlocal;
-  const int d = idir;
-  const EQUtil::Unwrap unwrap(atom, domain, d);
-
-  double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = 0.0;
+  const EQUtil::Unwrap unwrap(atom, domain, idir);
   long nb = 0;
   try {
-    for (int i = 0; i < nlocal; i++) {
-      if (!(mask[i] & groupbit)) continue;
-      double *const st = state[i];
-      ncount += 1.0;
-      if (st[CS_THRESHOLD] == 0.0) model->form(st, static_cast<uint64_t>(tag[i]), unwrap(i));
-      if (st[CS_THRESHOLD] < 0.0) {    // detached for good
-        st[CS_STRETCH] = st[CS_FORCE] = 0.0;
-        continue;
-      }
-      const double xu = unwrap(i);
-      double s = unwrap.stretch(xu - st[CS_ANCHOR]);
-      st[CS_STRETCH] = s;
-      const double tol = ContactModel::tolerance(st, break_tol);
-      if (allow_breaks && !(std::fabs(s) < st[CS_THRESHOLD] - tol)) {
-        s = model->resolve(st, static_cast<uint64_t>(tag[i]), s, tol, nb);
-        if (st[CS_THRESHOLD] < 0.0) {
-          st[CS_STRETCH] = st[CS_FORCE] = 0.0;
-          continue;
-        }
-        st[CS_ANCHOR] = xu - s;
-        // the stretch as every later evaluation at these positions finds
-        // it (x - anchor), so that run 0 or a restart changes nothing
-        s = unwrap.stretch(xu - st[CS_ANCHOR]);
-      }
-      const double fc = st[CS_STIFFNESS] * s;
-      st[CS_STRETCH] = s;
-      st[CS_FORCE] = fc;
-      f[i][d] -= fc;
-      fsum += fc;
-      esum += fc * s;
-      ssum += s;
-      natt += 1.0;
-    }
+    nb = unwrap.orthogonal() ? scan<true>(unwrap, allow_breaks) : scan<false>(unwrap, allow_breaks);
   } catch (const BreakError &e) {
     error->one(FLERR, "Fix eq/contacts: {}", e.what());
   }
-  local_breaks_total += nb;
   local_sum[SUM_BREAKS] = static_cast<double>(nb);
+}
+
+// returns the number of breaks
+template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks)
+{
+  const EQUtil::Unwrap unwrap = unwrap_arg;
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int bit = groupbit;
+  const double rel = break_tol;
+  const std::size_t width = ncol;
+  double *const rows = nlocal > 0 ? state[0] : nullptr;    // nmax x ncol in one block
+  double *const fd = nlocal > 0 ? atom->f[0] + idir : nullptr;
+  double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = 0.0;
+  long nb = 0;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & bit)) continue;
+    double *const st = rows + i * width;
+    ncount += 1.0;
+    const double xs = st[CS_THRESHOLD];
+    if (xs < 0.0) {    // detached for good
+      st[CS_STRETCH] = st[CS_FORCE] = 0.0;
+      continue;
+    }
+    double s;
+    if (xs == 0.0) {
+      if (!settle(i, unwrap_arg, allow_breaks, nb)) continue;
+      s = st[CS_STRETCH];
+    } else {
+      const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
+      s = unwrap.stretch(xu - st[CS_ANCHOR]);
+      st[CS_STRETCH] = s;
+      if (allow_breaks && !(std::fabs(s) < xs - ContactModel::tolerance(st, rel))) {
+        if (!settle(i, unwrap_arg, allow_breaks, nb)) continue;
+        s = st[CS_STRETCH];
+      }
+    }
+    const double fc = st[CS_STIFFNESS] * s;
+    st[CS_FORCE] = fc;
+    fd[3 * i] -= fc;
+    fsum += fc;
+    esum += fc * s;
+    ssum += s;
+    natt += 1.0;
+  }
+  local_breaks_total += nb;
   local_sum[SUM_FORCE] = fsum;
   local_sum[SUM_ATTACHED] = natt;
   local_sum[SUM_ENERGY] = 0.5 * esum;
@@ -521,6 +532,37 @@ void FixEQContacts::apply(bool allow_breaks)
   local_sum[SUM_COUNT] = ncount;
   local_sum[SUM_TOTAL] = static_cast<double>(local_breaks_total);
   reduced_valid = 0;
+  return nb;
+}
+
+// a contact that forms or reaches its threshold: formed, its breaks
+// resolved, its stretch stored; false when it detached for good
+bool FixEQContacts::settle(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, long &nb)
+{
+  double *const st = state[i];
+  const uint64_t id = static_cast<uint64_t>(atom->tag[i]);
+  if (st[CS_THRESHOLD] == 0.0) model->form(st, id, unwrap(i));
+  if (st[CS_THRESHOLD] < 0.0) {
+    st[CS_STRETCH] = st[CS_FORCE] = 0.0;
+    return false;
+  }
+  const double xu = unwrap(i);
+  double s = unwrap.stretch(xu - st[CS_ANCHOR]);
+  st[CS_STRETCH] = s;
+  const double tol = ContactModel::tolerance(st, break_tol);
+  if (allow_breaks && !(std::fabs(s) < st[CS_THRESHOLD] - tol)) {
+    s = model->resolve(st, id, s, tol, nb);
+    if (st[CS_THRESHOLD] < 0.0) {
+      st[CS_STRETCH] = st[CS_FORCE] = 0.0;
+      return false;
+    }
+    st[CS_ANCHOR] = xu - s;
+    // the stretch as every later evaluation at these positions finds it
+    // (x - anchor), so that run 0 or a restart changes nothing
+    s = unwrap.stretch(xu - st[CS_ANCHOR]);
+  }
+  st[CS_STRETCH] = s;
+  return true;
 }
 
 /* ----------------------------------------------------------------------
@@ -650,17 +692,22 @@ void FixEQContacts::tally(double **f)
 {
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
-  const int d = idir;
+  const int bit = groupbit;
+  // rows and forces by offset (each one block in LAMMPS' arrays): no
+  // reload of their row pointers after each store
+  const std::size_t width = ncol;
+  double *const rows = nlocal > 0 ? state[0] : nullptr;
+  double *const fd = f && nlocal > 0 ? f[0] + idir : nullptr;
   double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = 0.0;
   for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    double *const st = state[i];
+    if (!(mask[i] & bit)) continue;
+    double *const st = rows + i * width;
     ncount += 1.0;
     if (st[CS_THRESHOLD] <= 0.0) continue;
     const double s = st[CS_STRETCH];
     const double fc = st[CS_STIFFNESS] * s;
     st[CS_FORCE] = fc;
-    if (f) f[i][d] -= fc;
+    if (fd) fd[3 * i] -= fc;
     fsum += fc;
     esum += fc * s;
     ssum += s;

@@ -51,6 +51,9 @@ class ContactModel;
 }
 
 namespace LAMMPS_NS {
+namespace EQUtil {
+  class Unwrap;
+}
 
 class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQEventSource {
  public:
@@ -116,6 +119,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   // breaks of an avalanche round, from version chg_from)
   std::vector<double> qbuf, dsv;
   std::vector<int> members, blist;
+  std::vector<int> slow;    // apply(): contacts that form or break this step
   bigint nevaluation, nversion, chg_from;
   EQChangeSet chg;
 
@@ -141,6 +145,8 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void record_changes(const int *list, int n, const double *ds);
   void record_detached();
   void apply(bool allow_breaks);
+  template <bool ORTHOGONAL> long scan(const EQUtil::Unwrap &unwrap, bool allow_breaks);
+  bool settle(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, long &nb);
   void apply_forces();
   void tally(double **f);
   void outputs_before_run();
