@@ -675,7 +675,6 @@ def gen_interact(b):
 def gen_substrate(b):
     """fix eq/substrate and its fix_modify keywords kc and velocity."""
     done = set()
-    big = (("1e300", "robust"), ("1e-300", "robust"))
     confs = [
         ("sawtooth", [P("uc", "1.0")], [
             ("dir", [style_word("dir", "x", ())]),
@@ -850,7 +849,7 @@ def gen_meso(b):
     ]:
         b.add(f"meso.{cid}", cls, fill(BASE_MESO, meso=line), Expect("error", "eq/meso", kw), GOOD_FILES)
     b.add("meso.group-empty", "wrong-group",
-          fill(BASE_MESO, meso=f"group nobody empty\nfix m nobody eq/meso 100 1.0 threshold uniform 0.75 1.25"),
+          fill(BASE_MESO, meso="group nobody empty\nfix m nobody eq/meso 100 1.0 threshold uniform 0.75 1.25"),
           Expect("error", "eq/meso", r"\bgroup\b|no atoms"))
     b.add("meso.fix_modify.unknown", "unknown-keyword",
           fill(BASE_MESO, meso=f"{good}\nfix_modify m speed 1.0"),
@@ -1540,20 +1539,52 @@ def main(argv=None):
         print(c.input)
         return 0
     if a.write:
-        for c in cases:
-            d = Path(a.write) / c.id
-            d.mkdir(parents=True, exist_ok=True)
-            c.write(d)
-            (d / "expect.json").write_text(json.dumps(dataclasses.asdict(c.expect)))
+        write_cases(cases, a.write)
         return 0
+    return run_and_summarize(cases, a, run_cases, summarize)
+
+
+def write_cases(cases, folder):
+    """Every case into folder/<id>/ with its expectation (expect.json)."""
+    for c in cases:
+        d = Path(folder) / c.id
+        d.mkdir(parents=True, exist_ok=True)
+        c.write(d)
+        (d / "expect.json").write_text(json.dumps(dataclasses.asdict(c.expect)))
+
+
+def write_report(results, path):
+    Path(path).write_text(json.dumps([dataclasses.asdict(r) for r in results], indent=1))
+
+
+def run_and_summarize(cases, a, run, summarize_fn):
+    """The runners' main (this one's and the misuse generator's): run the
+    cases with run(), print summarize_fn()'s table, write the --json report;
+    exit status 0 when every case is ok."""
     version, _ = lmp_version(a.lmp)
     t0 = time.time()
-    results = run_cases(cases, a.lmp, a.jobs, a.timeout, keep=a.keep, progress=a.progress)
+    results = run(cases, a.lmp, a.jobs, a.timeout, keep=a.keep, progress=a.progress)
     dt = time.time() - t0
-    summarize(cases, results, label=f"[{a.lmp}, LAMMPS {version}, {dt:.1f} s, {a.jobs} jobs]")
+    summarize_fn(cases, results, label=f"[{a.lmp}, LAMMPS {version}, {dt:.1f} s, {a.jobs} jobs]")
     if a.json:
-        Path(a.json).write_text(json.dumps([dataclasses.asdict(r) for r in results], indent=1))
+        write_report(results, a.json)
     return 0 if all(r.ok for r in results) else 1
+
+
+def pytest_summary(results, by_id, summarize_fn, label, report_env, capsys):
+    """test_summary of the pytest runners: one line of counts per class and
+    outcome for the results of this run (printed past pytest's capture);
+    the environment variable report_env names a JSON report to write."""
+    if not results:
+        return
+    import io
+    buf = io.StringIO()
+    line = summarize_fn([by_id[r.id] for r in results], results, out=buf, label=label)
+    with capsys.disabled():
+        print("\n" + line)
+    report = os.environ.get(report_env)
+    if report:
+        write_report(results, report)
 
 
 if __name__ == "__main__":

@@ -43,11 +43,9 @@ import argparse
 import collections
 import contextlib
 import dataclasses
-import json
 import os
 import re
 import sys
-import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -1508,20 +1506,9 @@ def main(argv=None):
         print(c.input)
         return 0
     if a.write:
-        for c in cases:
-            d = Path(a.write) / c.id
-            d.mkdir(parents=True, exist_ok=True)
-            c.write(d)
-            (d / "expect.json").write_text(json.dumps(dataclasses.asdict(c.expect)))
+        F.write_cases(cases, a.write)
         return 0
-    version, _ = F.lmp_version(a.lmp)
-    t0 = time.time()
-    results = run_cases(cases, a.lmp, a.jobs, a.timeout, keep=a.keep, progress=a.progress)
-    dt = time.time() - t0
-    summarize(cases, results, label=f"[{a.lmp}, LAMMPS {version}, {dt:.1f} s, {a.jobs} jobs]")
-    if a.json:
-        Path(a.json).write_text(json.dumps([dataclasses.asdict(r) for r in results], indent=1))
-    return 0 if all(r.ok for r in results) else 1
+    return F.run_and_summarize(cases, a, run_cases, summarize)
 
 
 if __name__ == "__main__":

@@ -17,7 +17,6 @@ FEQ_FUZZ_REPORT (a file for the JSON results of the run).
 """
 
 import dataclasses
-import json
 import os
 import shutil
 import sys
@@ -164,15 +163,5 @@ def test_summary(capsys):
     """One line of counts per class and outcome for everything this run
     executed (printed; FEQ_FUZZ_REPORT: the results as JSON)."""
     need_lmp()
-    results = [RESULTS[c.id] for c in CASES if c.id in RESULTS]
-    if not results:
-        return
-    import io
-    buf = io.StringIO()
-    line = F.summarize([BY_ID[r.id] for r in results], results, out=buf,
-                       label=f"[{LMP}, LAMMPS {VERSION}; {len(KNOWN)} known failures]")
-    with capsys.disabled():
-        print("\n" + line)
-    report = os.environ.get("FEQ_FUZZ_REPORT")
-    if report:
-        Path(report).write_text(json.dumps([dataclasses.asdict(r) for r in results], indent=1))
+    F.pytest_summary([RESULTS[c.id] for c in CASES if c.id in RESULTS], BY_ID, F.summarize,
+                     f"[{LMP}, LAMMPS {VERSION}; {len(KNOWN)} known failures]", "FEQ_FUZZ_REPORT", capsys)
