@@ -88,7 +88,8 @@ struct FixEQMeso::Args {
 
 FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
     FixEQBlocks(lmp, narg, arg), nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
-    lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), pi0_local(0.0),
+    lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), threshold_sd(0.0),
+    grid_warned(0), pi0_local(0.0),
     list_stamp(-1), screened(0), ran(0), restored(0), comm_mode(0), check_every(CHECK_DEFAULT), norm_max(0.0),
     neval(0), reduced_eval(-1), out(nullptr)
 {
@@ -230,6 +231,7 @@ void FixEQMeso::make_model(Args &a)
 {
   const bool grid_default = a.du == 0.0;
   const double sd = std::sqrt(std::max(0.0, a.threshold.dist->variance()));
+  threshold_sd = sd;
   if (grid_default) a.du = GRID_DEFAULT_SD * sd;
   try {
     if (grid_default && !(a.du > 0.0)) throw feq::GridError("grid: zero width");
@@ -579,7 +581,27 @@ void FixEQMeso::screening()
                         "screened solution (eps0 = Pi0/(1 - Pi0) diverges); lower kappa ({}) or "
                         "rcut ({})", pi0_max, static_cast<tagint>(who), kappa, rcut);
     }
+    check_screened_grid();
   }
+}
+
+// with screening the thresholds that matter are x_s/(1 + eps), narrower by
+// 1 + eps0 = 1/(1 - Pi0) in the steady state: a grid that resolves them
+// with fewer than 1/MESO_GRID_SD_FRACTION cells per standard deviation
+// (the limit that is an error without screening) is reported once
+void FixEQMeso::check_screened_grid()
+{
+  const double screened_sd = threshold_sd * (1.0 - pi0_max);
+  if (grid_warned || !(model->grid() > feq::MESO_GRID_SD_FRACTION * screened_sd)) return;
+  grid_warned = 1;
+  if (comm->me == 0)
+    error->warning(FLERR, "Fix {} eq/meso: grid {:.6g} resolves the screened thresholds x_s/(1 + eps0) "
+                          "(Pi0 = {:.6g}, eps0 = Pi0/(1 - Pi0) = {:.6g}) with {:.3g} cells per standard "
+                          "deviation, fewer than {:.0f}: steady eps and F carry a grid error that the "
+                          "screening amplifies by 1 + eps0; grid {:.3g} (1/8 of the screened standard "
+                          "deviation) resolves them as the default grid resolves unscreened thresholds",
+                   id, model->grid(), pi0_max, pi0_max / (1.0 - pi0_max), screened_sd / model->grid(),
+                   1.0 / feq::MESO_GRID_SD_FRACTION, GRID_DEFAULT_SD * screened_sd);
 }
 
 // rate and displacement of each block

@@ -103,6 +103,9 @@ class FixEQMeso : public FixEQBlocks {
   // ranks: pj[first[2i] .. first[2i+1])
   std::vector<int> first, pj;
   double pi0_max;      // largest sum_m Pi_mn over the blocks at the last list build
+  double threshold_sd;    // standard deviation of the thresholds (the grid's scale)
+  int grid_warned;     // the warning on a grid too coarse for the screened thresholds was given
+  void check_screened_grid();
   double pi0_local;    // largest sum_m Pi_mn of this rank's blocks at the last step
   bigint list_stamp;   // neighbor->ncalls of the partners (-1: none)
   int screened;        // the screening has been computed (pi0_local holds)

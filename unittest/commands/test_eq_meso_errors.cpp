@@ -123,6 +123,33 @@ TEST_F(EQMesoErrors, ScreeningWithoutSolution)
                command("run 0 post no"););
 }
 
+// Pi0 = 4 x 100 x 0.002325 = 0.93: the screened thresholds x_s/(1 + eps0)
+// have the standard deviation 0.144338 (1 - Pi0) = 0.0101; the default
+// grid 0.144338/8 = 0.0180 resolves it with 0.56 cells: a warning, once;
+// a grid of 0.002 (5 cells) none
+TEST_F(EQMesoErrors, GridTooCoarseForTheScreening)
+{
+  HIDE_OUTPUT([&] { fix(std::string("100 1.0 ") + T + " screen 0.002325 1.0 1.01"); });
+  ::testing::internal::CaptureStdout();
+  command("run 0 post no");
+  command("run 0 post no");
+  std::string out = ::testing::internal::GetCapturedStdout();
+  EXPECT_THAT(out, ::testing::HasSubstr("WARNING: Fix m eq/meso: grid 0.0180422 resolves the "
+                                        "screened thresholds x_s/(1 + eps0) (Pi0 = 0.93, eps0 = "
+                                        "Pi0/(1 - Pi0) = 13.2857) with 0.56 cells per standard "
+                                        "deviation, fewer than 4"));
+  EXPECT_THAT(out, ::testing::HasSubstr("grid 0.00126 (1/8 of the screened standard deviation)"));
+  EXPECT_EQ(out.find("WARNING: Fix m eq/meso: grid"), out.rfind("WARNING: Fix m eq/meso: grid"));
+  HIDE_OUTPUT([&] {
+    command("unfix m");
+    fix(std::string("100 1.0 ") + T + " screen 0.002325 1.0 1.01 grid 0.002");
+  });
+  ::testing::internal::CaptureStdout();
+  command("run 0 post no");
+  out = ::testing::internal::GetCapturedStdout();
+  EXPECT_THAT(out, ::testing::Not(::testing::HasSubstr("WARNING: Fix m eq/meso: grid")));
+}
+
 // partners beyond the ghost cutoff would be missed (LAMMPS from 2022 on
 // refuses the neighbor list itself; 29 Sep 2021 does not: the fix does)
 TEST_F(EQMesoErrors, GhostCutoff)
