@@ -8,8 +8,14 @@ runs through 'if ... then', the package's commands included.  This filter
 is narrower: a leak report is LAMMPS' own when every *direct* leak in it
 was allocated by one of the functions below itself (frame #1, the caller
 of operator new); indirect leaks are reachable only from direct ones and
-go with them.  Any other report (a direct leak elsewhere, any
-AddressSanitizer error, any UBSan finding) is a finding.
+go with them.  A generic allocator (utils::strdup) counts only where
+its caller (frame #2) is one of LAMMPS' functions listed with it.  Any
+other report (a direct leak elsewhere, any AddressSanitizer error, any
+UBSan finding) is a finding.  One exception, said in the output: the
+last block of a report cut off before its first frame (a process that
+MPI_Abort killed while LeakSanitizer was writing, when the other rank
+stopped with an error) is 'truncated', and the report is LAMMPS' own
+when all its complete direct leaks are.
 
     lsan_filter.py REPORT...     prints a line per report; exit 1 on a finding
 """
@@ -26,10 +32,54 @@ KNOWN = {
         "src/input.cpp: Input::execute_command() creates a command object with new, calls its "
         "command() and deletes it; when command() stops with an error the object is never "
         "deleted (its members are the indirect leaks)"),
+    "LAMMPS_NS::Run::command": (
+        "src/run.cpp: 'run N every M \"cmd\" ...' keeps its commands in new[]'ed arrays that it "
+        "deletes after the run; an error during the run leaves them"),
+    "LAMMPS_NS::PairHybrid::save_special": (
+        "src/pair_hybrid.cpp: init_one() saves special_lj/coul into a new[]'ed array and "
+        "restore_special() deletes it; an error of a sub-style's init_one() in between leaves it"),
+    "LAMMPS_NS::Variable::evaluate": (
+        "src/variable.cpp: evaluate() copies each word of a formula into a new[]'ed string and "
+        "deletes it when the word is done; an error while evaluating the word (e.g. a fix's "
+        "output refused) leaves it"),
+    "LAMMPS_NS::Variable::find_matching_paren": (
+        "src/variable.cpp: copies the contents of a parenthesis into a new[]'ed string that the "
+        "caller deletes after evaluating it; an error in between leaves it"),
+    "LAMMPS_NS::ReadRestart::check_eof_magic": (
+        "src/read_restart.cpp: reads the end-of-file magic into a new[]'ed string and deletes it "
+        "after the check; a truncated or garbled file stops with an error before that"),
+}
+# generic allocators: LAMMPS' own only when called (frame #2) by one of these
+# (each copies a string, runs what may stop with an error, then deletes it:
+# run's commands, a math function's arguments, an immediate $(...)
+# variable, read_restart's file name)
+KNOWN_CALLERS = {
+    "LAMMPS_NS::utils::strdup": ("LAMMPS_NS::Run::command", "LAMMPS_NS::Variable::parse_args",
+                                 "LAMMPS_NS::Variable::compute_equal", "LAMMPS_NS::Input::ifthenelse",
+                                 "LAMMPS_NS::ReadRestart::command"),
 }
 
 BLOCK_RE = re.compile(r"^(Direct|Indirect) leak of (\d+) byte", re.M)
 FRAME1_RE = re.compile(r"^\s*#1 0x[0-9a-f]+ in (.+?)(?: \S+:\d+(?::\d+)?)?$", re.M)
+FRAME2_RE = re.compile(r"^\s*#2 0x[0-9a-f]+ in (.+?)(?: \S+:\d+(?::\d+)?)?$", re.M)
+FRAME_RE = re.compile(r"^\s*#\d+ 0x", re.M)
+
+
+def known_site(block):
+    """the KNOWN key (or allocator <- caller) of a direct leak block, or None"""
+    m = FRAME1_RE.search(block)
+    func = m.group(1) if m else "?"
+    for k in KNOWN:
+        if k in func:
+            return k
+    for alloc, callers in KNOWN_CALLERS.items():
+        if alloc in func:
+            m2 = FRAME2_RE.search(block)
+            caller = m2.group(1) if m2 else "?"
+            for c in callers:
+                if c in caller:
+                    return f"{alloc} <- {c}"
+    return None
 
 
 def classify(text):
@@ -39,20 +89,22 @@ def classify(text):
     if "ERROR: LeakSanitizer" not in text:
         return "finding", "unrecognised report"
     starts = [m.start() for m in BLOCK_RE.finditer(text)] + [len(text)]
-    known = set()
-    for a, b in zip(starts, starts[1:]):
+    known, truncated = set(), False
+    for n, (a, b) in enumerate(zip(starts, starts[1:])):
         block = text[a:b]
         if not block.startswith("Direct"):
             continue
-        m = FRAME1_RE.search(block)
-        func = m.group(1) if m else "?"
-        hit = [k for k in KNOWN if k in func]
-        if not hit:
-            return "finding", f"direct leak allocated in {func}"
-        known |= set(hit)
+        if b == len(text) and n > 0 and not FRAME_RE.search(block) and "SUMMARY:" not in block:
+            truncated = True
+            continue
+        site = known_site(block)
+        if site is None:
+            m = FRAME1_RE.search(block)
+            return "finding", f"direct leak allocated in {m.group(1) if m else '?'}"
+        known.add(site)
     if not known:
         return "finding", "leak report without a direct leak"
-    return "lammps", ", ".join(sorted(known))
+    return "lammps", ", ".join(sorted(known)) + (" (report cut off at its end)" if truncated else "")
 
 
 def main(paths):
