@@ -119,7 +119,6 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   // breaks of an avalanche round, from version chg_from)
   std::vector<double> qbuf, dsv;
   std::vector<int> members, blist;
-  std::vector<int> slow;    // apply(): contacts that form or break this step
   bigint nevaluation, nversion, chg_from;
   EQChangeSet chg;
 

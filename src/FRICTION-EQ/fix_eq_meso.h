@@ -105,13 +105,13 @@ class FixEQMeso : public FixEQBlocks {
   double pi0_max;      // largest sum_m Pi_mn over the blocks at the last list build
   double threshold_sd;    // standard deviation of the thresholds (the grid's scale)
   int grid_warned;     // the warning on a grid too coarse for the screened thresholds was given
-  void check_screened_grid();
   double pi0_local;    // largest sum_m Pi_mn of this rank's blocks at the last step
   bigint list_stamp;   // neighbor->ncalls of the partners (-1: none)
   int screened;        // the screening has been computed (pi0_local holds)
   int ran;             // a run or minimization has set this fix up
   int restored;        // blocks came from a restart file
   void outputs_before_run();
+  void check_screened_grid();
   int comm_mode;
   std::vector<double> cbuf;    // forward communication: rate and displacement per atom
   // normalization check of the blocks' Q every check_every steps
