@@ -6,9 +6,15 @@
    N = 4096 ... 1e6 on 1 and 2 ranks, in the steady state of a rigidly
    moving slider.  The eq/elastic cost includes what the fix does for the
    interaction (the field update and the avalanches in pre_force) and the
-   forces; a second eq/elastic run with ten times the breaks gives the
-   cost per break.  The neighbour list builds are shown apart (lj/cut: a
-   half list; eq/elastic: a full list).
+   forces.  The neighbour list builds are shown apart (lj/cut: a half
+   list; eq/elastic: a full list).
+   The cost per break: a run at ten times the velocity (ten times the
+   breaks per step) minus a run of the same motion whose contacts cannot
+   break (same list builds and field updates), divided by its breaks, and
+   by its avalanche rounds (cost per round, the breaks of a round
+   included).  Beside it, the update of the partners' fields alone as a
+   plain loop (hand_scatter.cpp, the same lattice and pair layout, breaks
+   at random contacts, in cache): its cost per break, and the ratio.
 2. Run time against error: F(X) of a rigid slider (N = 4080, kappa = 0.03,
    lambda_c = 3) driven by fixed steps dX, against the quasi-static run
    (fix eq/quasistatic) of the same contacts, which has no step error.
@@ -18,6 +24,8 @@
 """
 import argparse
 import re
+import shutil
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -31,10 +39,29 @@ import eqtools  # noqa: E402
 SECTIONS = ("Pair", "Neigh", "Comm", "Modify")
 
 
+def hand_scatter(out):
+    """compile hand_scatter.cpp (-O2, as the LAMMPS build) into out/"""
+    exe = Path(out) / "hand_scatter"
+    src = HERE / "hand_scatter.cpp"
+    if not exe.exists() or exe.stat().st_mtime < src.stat().st_mtime:
+        Path(out).mkdir(parents=True, exist_ok=True)
+        cxx = shutil.which("g++") or "c++"
+        subprocess.run([cxx, "-O2", "-g", "-DNDEBUG", "-std=c++17", str(src), "-o", str(exe)], check=True)
+    return exe
+
+
+def partner_update(exe, n, per_round):
+    """ns per break of the plain partner update, n contacts, rounds of per_round breaks"""
+    o = subprocess.run([str(exe), str(n), str(max(1, int(round(per_round))))], check=True,
+                       capture_output=True, text=True).stdout
+    return float(re.search(r"ns_per_break ([0-9.]+)", o).group(1))
+
+
 def parse_runs(log):
     out = {}
     parts = log.split("BENCH ")[1:]
     breaks = [float(v) for v in re.findall(r"^BREAKS ([0-9.eE+-]+)", log, re.M)]
+
     for k, p in enumerate(parts):
         name = p.split()[0]
         loop = float(re.search(r"Loop time of ([0-9.eE+-]+)", p).group(1))
@@ -45,43 +72,62 @@ def parse_runs(log):
             m = re.search(r"^%s\s*\|([^|]*)\|\s*([0-9.eE+-]+)" % sec, p, re.M)
             t[sec] = float(m.group(2)) if m else 0.0
         nb = re.search(r"Ave neighs/atom = ([0-9.]+)", p)
+        rd = re.search(r"^ROUNDS ([0-9.eE+-]+)", p, re.M)
         out[name] = {"loop": loop, "steps": steps, "natoms": natoms, "t": t,
                      "neigh": float(nb.group(1)) if nb else 0.0,
-                     "breaks": breaks[k] - (breaks[k - 1] if k > 0 else 0.0) if k < len(breaks) else 0.0}
+                     "rounds": float(rd.group(1)) if rd else 0.0,    # per step
+                     # the held run's fix is a new one: its count starts at 0
+                     "breaks": (breaks[k] - (breaks[k - 1] if k > 0 and name != "eq/elastic-held" else 0.0)
+                                if k < len(breaks) else 0.0)}
     return out
 
 
-def pair_table(sizes, ranks, work, out):
+def break_cost(res):
+    """ns per break and us per round of the breaks run against the held one"""
+    hi, held = res["eq/elastic-breaks"], res["eq/elastic-held"]
+    extra = hi["loop"] - held["loop"]
+    nround = hi["rounds"] * hi["steps"]
+    return 1e9 * extra / max(hi["breaks"], 1.0), 1e6 * extra / max(nround, 1.0)
+
+
+def pair_table(sizes, ranks, work, out, repeat):
     print("pair eq/elastic vs lj/cut, rcut = 3 (36 lattice neighbours), steady sliding of a rigid "
-          "slider, dX = 0.001 per step; ns per contact-step (run minus the run without pair style)")
+          "slider, dX = 0.001 per step; ns per contact-step (run minus the run without pair style); "
+          f"minimum of {repeat} runs.\nPer break and per round: the run at dX = 0.01 minus the same "
+          "motion with unbreakable contacts; hand: the partner update alone (hand_scatter.cpp, "
+          "one rank's share, divided by the ranks: wall time per break)")
     print(f"{'N':>8} {'ranks':>5} {'steps':>5} {'no pair':>8} {'lj/cut':>7} {'eq/elastic':>10} "
-          f"{'ratio':>6} {'breaks/step':>11} {'ns/break':>9} {'Neigh lj':>8} {'Neigh eq':>8}  "
-          f"neighbours/atom (lj half, eq full)")
+          f"{'ratio':>6} {'breaks/step':>11} {'x10: breaks/step':>16} {'rounds/step':>11} "
+          f"{'ns/break':>8} {'us/round':>8} {'hand ns/break':>13} {'break/hand':>10} "
+          f"{'Neigh lj':>8} {'Neigh eq':>8}  neighbours/atom (lj half, eq full)")
+    exe = hand_scatter(out)
     for n in sizes:
         ny = max(1, int(round((n / 4.0) ** 0.5)))
         nx = 2 * ny
         steps = max(50, int(work / (2 * nx * ny)))
         for r in ranks:
-            best = None
-            for _ in range(2):
+            runs = []
+            for _ in range(repeat):
                 log = eqtools.run_lammps(HERE / "in.bench-pair",
                                          {"nx": nx, "ny": ny, "steps": steps}, nprocs=r, cwd=out)
-                res = parse_runs(log)
-                if best is None or res["eq/elastic"]["loop"] < best["eq/elastic"]["loop"]:
-                    best = res
+                runs.append(parse_runs(log))
+            best = min(runs, key=lambda res: res["eq/elastic"]["loop"])
+            per_break, per_round = min(break_cost(res) for res in runs)
             N = best["none"]["natoms"]
             ns = {k: 1e9 * v["loop"] / (v["steps"] * N) for k, v in best.items()}
             lj = ns["lj/cut"] - ns["none"]
             eq = ns["eq/elastic"] - ns["none"]
-            nb_lo = best["eq/elastic"]["breaks"]
-            nb_hi = best["eq/elastic-breaks"]["breaks"]
-            per_break = (1e9 * (best["eq/elastic-breaks"]["loop"] - best["eq/elastic"]["loop"])
-                         / max(nb_hi - nb_lo, 1.0))
+            hi = best["eq/elastic-breaks"]
+            per_step = hi["breaks"] / hi["steps"]
+            # the partner update of one rank's share (its rounds' breaks),
+            # as wall time per break of r ranks working at once
+            hand = partner_update(exe, N // r, per_step / max(hi["rounds"], 1e-9) / r) / r
             neigh = {k: 1e9 * best[k]["t"]["Neigh"] / (best[k]["steps"] * N)
                      for k in ("lj/cut", "eq/elastic")}
             print(f"{N:>8} {r:>5} {steps:>5} {ns['none']:>8.1f} {lj:>7.1f} {eq:>10.1f} "
-                  f"{eq / lj:>6.2f} {nb_lo / steps:>11.1f} {per_break:>9.0f} "
-                  f"{neigh['lj/cut']:>8.1f} {neigh['eq/elastic']:>8.1f}  "
+                  f"{eq / lj:>6.2f} {best['eq/elastic']['breaks'] / steps:>11.1f} {per_step:>16.1f} "
+                  f"{hi['rounds']:>11.2f} {per_break:>8.0f} {per_round:>8.1f} {hand:>13.0f} "
+                  f"{per_break / hand:>10.2f} {neigh['lj/cut']:>8.1f} {neigh['eq/elastic']:>8.1f}  "
                   f"{best['lj/cut']['neigh']:.0f}, {best['eq/elastic']['neigh']:.0f}", flush=True)
 
 
@@ -138,6 +184,7 @@ def main():
     ap.add_argument("--sizes", default="4096,65536,1e6")
     ap.add_argument("--ranks", default="1,2")
     ap.add_argument("--work", type=float, default=2e7, help="contact-steps per timed run")
+    ap.add_argument("--repeat", type=int, default=3, help="runs of each size (minimum taken)")
     ap.add_argument("--kappa", type=float, default=0.03)
     ap.add_argument("--xmax", type=float, default=2.5)
     ap.add_argument("--out", default=str(HERE / "out"))
@@ -146,7 +193,7 @@ def main():
     out.mkdir(parents=True, exist_ok=True)
     if a.part in ("pair", "all"):
         pair_table([int(float(v)) for v in a.sizes.split(",")],
-                   [int(v) for v in a.ranks.split(",")], a.work, out)
+                   [int(v) for v in a.ranks.split(",")], a.work, out, a.repeat)
     if a.part in ("accuracy", "all"):
         accuracy_table(a.kappa, a.xmax, out)
 

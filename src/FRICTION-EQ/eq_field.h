@@ -98,6 +98,13 @@ class EQCoordinateSource {
 struct EQFieldView {
   const double *h = nullptr;    // h_i
   const double *k = nullptr;    // K_i = sum_j k_ij
+  // the local atoms whose h_i changed in the field's last update, if that
+  // update was a change set of the source (an atom may appear more than
+  // once; nullptr: the update was of another kind and any h_i may have
+  // changed).  A reader that looked before that update, and not since,
+  // finds every change here.
+  const int *changed = nullptr;
+  int nchanged = 0;
 };
 
 class EQElasticField {

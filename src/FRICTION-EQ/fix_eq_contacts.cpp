@@ -72,10 +72,7 @@ constexpr double NOT_A_CONTACT = std::numeric_limits<double>::quiet_NaN();
 
 class FixEQContacts::Hooks : public AvalancheHooks {
  public:
-  Hooks(FixEQContacts *f, EQElasticField *fld) :
-      fix(f), elastic(fld), view(fld->field_view()), tags(f->atom->tag)
-  {
-  }
+  Hooks(FixEQContacts *f, EQElasticField *fld) : fix(f), elastic(fld), tags(f->atom->tag) {}
   long global_sum(long n) override
   {
     if (fix->comm->nprocs == 1) return n;
@@ -83,20 +80,19 @@ class FixEQContacts::Hooks : public AvalancheHooks {
     MPI_Allreduce(&n, &all, 1, MPI_LONG, MPI_SUM, fix->world);
     return all;
   }
+  AvalancheField field() override { return pull(); }
   // the fix records the change set; the field pulls it when asked for h
-  void changed(const int *list, int n, const double *ds) override
+  AvalancheField changed(const int *list, int n, const double *ds) override
   {
     fix->record_changes(list, n, ds);
-    view = elastic->field_view();
+    return pull();
   }
   // contacts detached for good: the field without them, at fixed positions
-  void detached() override
+  AvalancheField detached() override
   {
     fix->record_detached();
-    view = elastic->field_view();
+    return pull();
   }
-  double field(int i) const override { return view.h[i]; }
-  double coupling(int i) const override { return view.k[i]; }
   uint64_t tag(int i) const override { return static_cast<uint64_t>(tags[i]); }
   const EQFieldView &last_view() const { return view; }
 
@@ -105,6 +101,17 @@ class FixEQContacts::Hooks : public AvalancheHooks {
   EQElasticField *elastic;
   EQFieldView view;
   const tagint *tags;
+
+  AvalancheField pull()
+  {
+    view = elastic->field_view();
+    AvalancheField f;
+    f.h = view.h;
+    f.k = view.k;
+    f.changed = view.changed;
+    f.nchanged = view.nchanged;
+    return f;
+  }
 };
 
 /* ---------------------------------------------------------------------- */
@@ -622,6 +629,7 @@ void FixEQContacts::record_changes(const int *list, int n, const double *ds)
   // the engine's new stretches themselves (not old + ds: exact whatever
   // the size of the change)
   for (int m = 0; m < n; m++) qbuf[list[m]] = state[list[m]][CS_STRETCH];
+  broke.insert(broke.end(), list, list + n);
   chg.list = list;
   chg.n = n;
   chg.dq = ds;
@@ -643,6 +651,7 @@ void FixEQContacts::field_step(bool allow_breaks)
   stretches();
   local_sum[SUM_BREAKS] = 0.0;
   rounds_last = 0;
+  broke.clear();
   EQFieldView view;
   if (allow_breaks) {
     Hooks hooks(this, elastic);
@@ -662,15 +671,18 @@ void FixEQContacts::field_step(bool allow_breaks)
     view = elastic->field_view();
   }
   // the field of the final state, for the output and next_event(); the
-  // stretches of broken contacts as every later evaluation at these
+  // stretches of re-formed contacts as every later evaluation at these
   // positions finds them (x - anchor), so that run 0 or a restart changes
   // nothing (they differ from the engine's by rounding)
-  const EQUtil::Unwrap unwrap(atom, domain, idir);
   for (const int i : members) {
     double *st = state[i];
     st[CS_FIELD] = st[CS_THRESHOLD] > 0.0 ? view.h[i] : 0.0;
-    if (st[CS_THRESHOLD] > 0.0 && local_sum[SUM_BREAKS] > 0.0)
-      st[CS_STRETCH] = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
+  }
+  if (broke.empty()) return;
+  const EQUtil::Unwrap unwrap(atom, domain, idir);
+  for (const int i : broke) {
+    double *st = state[i];
+    if (st[CS_THRESHOLD] > 0.0) st[CS_STRETCH] = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
   }
 }
 
@@ -868,7 +880,7 @@ double FixEQContacts::memory_usage()
 {
   return FixEQPerAtom::memory_usage() + static_cast<double>(qbuf.capacity()) * sizeof(double) +
       static_cast<double>(dsv.capacity()) * sizeof(double) +
-      static_cast<double>(members.capacity() + blist.capacity()) * sizeof(int);
+      static_cast<double>(members.capacity() + blist.capacity() + broke.capacity()) * sizeof(int);
 }
 
 /* ----------------------------------------------------------------------

@@ -119,6 +119,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   // breaks of an avalanche round, from version chg_from)
   std::vector<double> qbuf, dsv;
   std::vector<int> members, blist;
+  std::vector<int> broke;    // contacts re-formed in this step's avalanche (once per round)
   bigint nevaluation, nversion, chg_from;
   EQChangeSet chg;
 

@@ -73,6 +73,7 @@
 #include "eq_lammps_util.h"
 #include "eq_link.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -110,7 +111,7 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
     idir(0), site_distance(false), nmax(0), q(nullptr), w(nullptr), h(nullptr), ksum(nullptr),
     dh(nullptr), xq(nullptr), mom(nullptr), key(), key_set(false), eval_seen(-1),
     version_seen(-1), ghost_version(-1), eval_computed(-1), eval_built(-1), pending(0), nfield(0),
-    vir_at(-1), comm_mode(0)
+    vir_at(-1), comm_mode(COMM_ALL), gsorted(true), changed_at(-1)
 {
   EQCite::add(lmp);
   single_enable = 1;
@@ -128,8 +129,10 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
   one_coeff = 0;
   manybody_flag = 0;
   no_virial_fdotr_compute = 1;    // forces on local atoms only (full list)
-  comm_forward = 1;
-  comm_reverse = 1;
+  // sparse exchanges (changed ghosts, scattered shares): a count, then
+  // (index, value) pairs, at most 1 + 2 n values for n atoms
+  comm_forward = 3;
+  comm_reverse = 3;
   cut_global = 0.0;
   wvir[0] = wvir[1] = wvir[2] = 0.0;
   n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = 0;
@@ -199,6 +202,10 @@ void PairEQElastic::grow()
   memory->create(h, nmax, "pair:h");
   memory->create(ksum, nmax, "pair:ksum");
   memory->create(dh, nmax, "pair:dh");
+  memset(dh, 0, nmax * sizeof(double));
+  tmark.assign(nmax, 0);
+  cmark.assign(nmax, 0);
+  csync.clear();
   mom = static_cast<double(*)[3]>(memory->smalloc(sizeof(double[3]) * nmax, "pair:mom"));
   key_set = false;    // the arrays hold nothing now
 }
@@ -566,11 +573,27 @@ void PairEQElastic::recompute(EQCoordinateSource *src)
 
 void PairEQElastic::sync_ghosts()
 {
-  comm_mode = 1;
+  comm_mode = COMM_ALL;
   EQCompat::forward_comm(comm, this);
   double **x = atom->x;
   const int nall = atom->nlocal + atom->nghost;
   for (int i = 0; i < nall; i++) w[i] = x[i][idir] - q[i];
+  clear_changed();
+}
+
+// after change sets: only the atoms they changed, to their ghosts (the
+// other ghosts' w = x - q still hold)
+void PairEQElastic::sync_changed()
+{
+  comm_mode = COMM_CHANGED;
+  EQCompat::forward_comm(comm, this);
+  clear_changed();
+}
+
+void PairEQElastic::clear_changed()
+{
+  for (const int i : csync) cmark[i] = 0;
+  csync.clear();
   ghost_version = version_seen;
 }
 
@@ -705,6 +728,7 @@ void PairEQElastic::virial_now()
   wvir[1] = vir[1];
   wvir[2] = vir[2];
   vir_at = nfield;
+  vir_pending.clear();
 }
 
 void PairEQElastic::skin_error(int i, int j, double du)
@@ -778,7 +802,7 @@ void PairEQElastic::follow(EQCoordinateSource *src, bool count)
     error->one(FLERR, "Pair eq/elastic: atom {} of {} became {} between two neighbor list builds "
                       "without notice (internal error)", atom->tag[changed], source_label,
                std::isnan(qin[changed]) ? "uncoupled" : "coupled");
-  if (ghost_version != version_seen) sync_ghosts();    // after breaks: the owners' new coordinates
+  if (ghost_version != version_seen) sync_changed();    // after breaks: the owners' new coordinates
   // only the coupled ghosts of the lists enter h (and can become partners
   // before the next list build): a box with many ghosts beyond the cutoff
   // (periodic images in a thin dimension) costs nothing per update
@@ -875,35 +899,81 @@ bool PairEQElastic::scatter_exact(const EQChangeSet &set) const
 
 /* ----------------------------------------------------------------------
    a change set of the source (breaks at fixed positions): h_i += K_i dq_i
-   and h_j -= k_ij dq_i for all partners j (ghost shares returned to their
-   owners); the virial changes by -dq_i M_i
+   and h_j -= k_ij dq_i for all partners j, the ghosts' shares summed in dh
+   and returned to their owners; the virial changes by -dq_i M_i.  The cost
+   is that of the partners: local h are updated in place, and only the
+   touched ghosts are sent and cleared.
 ------------------------------------------------------------------------- */
 
 void PairEQElastic::scatter(const EQChangeSet &set)
 {
   const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
   if (pending) site_field(nullptr);
   const bool vir_current = vir_at == nfield;
-  memset(dh, 0, nall * sizeof(double));
+  // local copies: the stores to h cannot alias them (kept in registers)
+  double *const hv = h;
+  const int *const fr = first.data();
+  const int *const jv = pj.data();
+  const double *const kv = pk.data();
+  std::size_t bound = 0;
+  for (int m = 0; m < set.n; m++) {
+    const int i = set.list[m];
+    bound += 1 + fr[2 * i + 1] - fr[2 * i];
+  }
+  hchanged.resize(bound);
+  int *const hc = hchanged.data();
+  int nc = 0;
+  gtouched.clear();
   for (int m = 0; m < set.n; m++) {
     const int i = set.list[m];
     const double dq = set.dq[i];
     q[i] += dq;
-    w[i] -= dq;
-    dh[i] += ksum[i] * dq;
-    for (int p = first[2 * i]; p < first[2 * i + 1]; p++) dh[pj[p]] -= pk[p] * dq;
+    if (site_distance) w[i] -= dq;    // contacts: w of local atoms is not read
+    hv[i] += ksum[i] * dq;
+    hc[nc++] = i;
+    for (int p = fr[2 * i]; p < fr[2 * i + 1]; p++) {
+      const int j = jv[p];
+      if (j < nlocal) {
+        hv[j] -= kv[p] * dq;
+        hc[nc++] = j;
+      } else
+        ghost_share(j, -kv[p] * dq);
+    }
+    if (vir_current) vir_pending.emplace_back(i, dq);
+    if (!cmark[i]) {
+      cmark[i] = 1;
+      csync.push_back(i);
+    }
+  }
+  hchanged.resize(nc);
+  gsorted = false;
+  comm_mode = COMM_SHARES;
+  EQCompat::reverse_comm(comm, this);
+  for (const int j : gtouched) {
+    dh[j] = 0.0;
+    tmark[j] = 0;
+  }
+  ++nfield;
+  changed_at = nfield;
+  if (vir_current) {
+    vir_at = nfield;
+    if (vir_pending.size() > static_cast<size_t>(nlocal)) virial_pending();
+  }
+  n_change += set.n;
+}
+
+// the virial's change by the scattered changes since it was computed,
+// -dq_i M_i, in their order (deferred until the virial is read)
+void PairEQElastic::virial_pending()
+{
+  for (const auto &c : vir_pending) {
+    const int i = c.first;
+    const double dq = c.second;
     wvir[0] -= dq * mom[i][0];
     wvir[1] -= dq * mom[i][1];
     wvir[2] -= dq * mom[i][2];
   }
-  comm_mode = 2;
-  EQCompat::reverse_comm(comm, this);
-  for (int i = 0; i < nlocal; i++)
-    if (!std::isnan(q[i])) h[i] += dh[i];
-  ++nfield;
-  if (vir_current) vir_at = nfield;
-  n_change += set.n;
+  vir_pending.clear();
 }
 
 /* ----------------------------------------------------------------------
@@ -917,6 +987,10 @@ EQFieldView PairEQElastic::field_view()
   EQFieldView v;
   v.h = h;
   v.k = ksum;
+  if (changed_at == nfield) {
+    v.changed = hchanged.data();
+    v.nchanged = static_cast<int>(hchanged.size());
+  }
   return v;
 }
 
@@ -970,7 +1044,7 @@ void PairEQElastic::compute(int eflag, int vflag)
   eval_computed = src->source_evaluation();
   // after breaks the ghosts hold their owners' coordinates of before: the
   // energy below and single() (compute pair/local) need the new ones
-  if (ghost_version != version_seen) sync_ghosts();
+  if (ghost_version != version_seen) sync_changed();
 
   double **f = atom->f;
   const int nlocal = atom->nlocal;
@@ -1009,6 +1083,7 @@ void PairEQElastic::compute(int eflag, int vflag)
   }
   if (vflag_global) {
     if (vir_at != nfield) virial_now();
+    else virial_pending();
     // LAMMPS' components xx yy zz xy xz yz of del_a f_b for f along dir
     if (d == 0) virial[0] += wvir[0];
     else if (d == 1) {
@@ -1081,26 +1156,82 @@ void *PairEQElastic::extract(const char *str, int &dim)
 
 /* ---------------------------------------------------------------------- */
 
+// COMM_ALL: q of every atom of the swap; COMM_CHANGED: a count, then
+// (index in the swap, q) of the changed ones
 int PairEQElastic::pack_forward_comm(int n, int *list_, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
-  for (int i = 0; i < n; i++) buf[i] = q[list_[i]];
-  return n;
+  if (comm_mode == COMM_ALL) {
+    for (int i = 0; i < n; i++) buf[i] = q[list_[i]];
+    return n;
+  }
+  int c = 0;
+  for (int i = 0; i < n; i++) {
+    const int j = list_[i];
+    if (!cmark[j]) continue;
+    buf[1 + 2 * c] = i;
+    buf[2 + 2 * c] = q[j];
+    ++c;
+  }
+  buf[0] = c;
+  return 1 + 2 * c;
 }
 
 void PairEQElastic::unpack_forward_comm(int n, int first_, double *buf)
 {
-  for (int i = 0; i < n; i++) q[first_ + i] = buf[i];
+  if (comm_mode == COMM_ALL) {
+    for (int i = 0; i < n; i++) q[first_ + i] = buf[i];
+    return;
+  }
+  if (n == 0) return;    // nothing was sent
+  double **x = atom->x;
+  const int c = static_cast<int>(buf[0]);
+  for (int k = 0; k < c; k++) {
+    const int g = first_ + static_cast<int>(buf[1 + 2 * k]);
+    q[g] = buf[2 + 2 * k];
+    w[g] = x[g][idir] - q[g];
+    if (!cmark[g]) {    // a ghost that passes it on in a later swap
+      cmark[g] = 1;
+      csync.push_back(g);
+    }
+  }
 }
 
+// the touched ghosts of this swap (ghosts first_ .. first_ + n): their
+// count, then their index in the swap and their share
 int PairEQElastic::pack_reverse_comm(int n, int first_, double *buf)
 {
-  for (int i = 0; i < n; i++) buf[i] = dh[first_ + i];
-  return n;
+  if (!gsorted) {
+    std::sort(gtouched.begin(), gtouched.end());
+    gsorted = true;
+  }
+  int c = 0;
+  for (auto it = std::lower_bound(gtouched.begin(), gtouched.end(), first_);
+       it != gtouched.end() && *it < first_ + n; ++it) {
+    buf[1 + 2 * c] = *it - first_;
+    buf[2 + 2 * c] = dh[*it];
+    ++c;
+  }
+  buf[0] = c;
+  return 1 + 2 * c;
 }
 
+// shares into their owners (or into ghosts that pass them on in a later
+// swap); n == 0: nothing was sent
 void PairEQElastic::unpack_reverse_comm(int n, int *list_, double *buf)
 {
-  for (int i = 0; i < n; i++) dh[list_[i]] += buf[i];
+  if (n == 0) return;
+  const int nlocal = atom->nlocal;
+  const int c = static_cast<int>(buf[0]);
+  for (int k = 0; k < c; k++) {
+    const int j = list_[static_cast<int>(buf[1 + 2 * k])];
+    if (j < nlocal) {
+      h[j] += buf[2 + 2 * k];
+      hchanged.push_back(j);
+    } else {
+      ghost_share(j, buf[2 + 2 * k]);
+      gsorted = false;
+    }
+  }
 }
 
 /* ----------------------------------------------------------------------

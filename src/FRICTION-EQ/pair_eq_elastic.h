@@ -45,6 +45,7 @@ PairStyle(eq/elastic,PairEQElastic);
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -97,10 +98,12 @@ class PairEQElastic : public Pair, public EQElasticField {
   bool site_distance;
 
   // per-atom arrays (local and ghost unless noted), valid for the key
-  // below: q the coordinates; xq the positions at the last update; w = x - q along dir (constant while the coordinates change
-  // only by the motion of the atoms); h, ksum, mom (local) the field,
-  // K_i, and the first moments M_i,a = sum_j k_ij del_ij,a of the
-  // virial; dh scattered changes
+  // below: q the coordinates; xq the positions at the last update; w =
+  // x - q along dir (constant while the coordinates change only by the
+  // motion of the atoms; for contacts read of ghosts only, so that a
+  // change set updates it for blocks only); h, ksum, mom (local) the
+  // field, K_i, and the first moments M_i,a = sum_j k_ij del_ij,a of the
+  // virial; dh the ghosts' shares of a change set
   int nmax;
   double *q, *w, *h, *ksum, *dh;
   double (*xq)[3];
@@ -171,7 +174,26 @@ class PairEQElastic : public Pair, public EQElasticField {
   bigint nfield;        // changes of h so far
   bigint vir_at;        // nfield when wvir was computed (-1: never)
   double wvir[3];       // sum over local i of (1/2) sum_j del_ij,a f_ij (f along dir)
-  int comm_mode;
+  // changes (i, dq_i) scattered since, not yet in wvir (part of it while
+  // vir_at == nfield; cleared when wvir is computed)
+  std::vector<std::pair<int, double>> vir_pending;
+  // what the next forward/reverse communication carries: q of all
+  // ghosts, q of the changed atoms, or the scattered shares of dh
+  enum CommMode { COMM_ALL, COMM_CHANGED, COMM_SHARES };
+  CommMode comm_mode;
+  // a change set's scatter: the ghosts it gave a share of dh (flagged in
+  // tmark; dh and tmark are zero outside a scatter), in index order for
+  // the sparse reverse communication (gsorted false: to be sorted), and
+  // the local atoms whose h it changed (repeats possible), valid while
+  // nfield == changed_at
+  std::vector<int> gtouched, hchanged;
+  std::vector<char> tmark;
+  bool gsorted;
+  bigint changed_at;
+  // the atoms whose q changed since the ghosts were last synchronized
+  // (local: scattered; ghost: received), flagged in cmark (zero outside)
+  std::vector<int> csync;
+  std::vector<char> cmark;
 
   // what the updates cost and how far the incremental field drifted
   bigint n_update, n_uniform, n_rebuild, n_nonuniform, n_advance, n_change, n_check;
@@ -186,11 +208,22 @@ class PairEQElastic : public Pair, public EQElasticField {
   void follow(EQCoordinateSource *src, bool count = true);
   bool scatter_exact(const EQChangeSet &set) const;
   void scatter(const EQChangeSet &set);
+  void sync_changed();
+  void ghost_share(int j, double v)
+  {
+    if (!tmark[j]) {
+      tmark[j] = 1;
+      gtouched.push_back(j);
+    }
+    dh[j] += v;
+  }
+  void clear_changed();
   void sync_ghosts();
   void rebuild(bool fresh_ghosts);
   void site_field(double **f);
   void drift_check(EQCoordinateSource *src);
   void virial_now();
+  void virial_pending();
   void skin_error(int i, int j, double du);
   void overlap_error(int i, int j);
   double kval(int itype, int jtype, double rsq, const double *del) const;

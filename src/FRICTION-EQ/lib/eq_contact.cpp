@@ -203,26 +203,50 @@ double ContactModel::resolve(double *st, uint64_t tag, double s, double tol, lon
 
 /* ---------------------------------------------------------------------- */
 
+namespace {
+// over its threshold in the field h (the breaking test of every round)
+inline bool over(const double *st, double h, double tol)
+{
+  const double th = st[CS_THRESHOLD];
+  if (th <= 0.0) return false;
+  const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
+  return !(std::fabs(e) < th - ContactModel::tolerance(st, tol));
+}
+
+// the contacts over their thresholds at the start of a round, in the
+// order of their rows: among every member, or among the rows whose h
+// changed (tested as named, the few found sorted)
+void candidates(const double *const *rows, const int *members, int nmembers, double tol,
+                const AvalancheField &f, bool all, std::vector<int> &list)
+{
+  list.clear();
+  if (all || !f.changed) {
+    for (int m = 0; m < nmembers; ++m) {
+      const int i = members[m];
+      if (over(rows[i], f.h[i], tol)) list.push_back(i);
+    }
+    return;
+  }
+  for (int m = 0; m < f.nchanged; ++m) {
+    const int i = f.changed[m];
+    if (over(rows[i], f.h[i], tol)) list.push_back(i);
+  }
+  std::sort(list.begin(), list.end());
+  list.erase(std::unique(list.begin(), list.end()), list.end());
+}
+}    // namespace
+
 AvalancheResult avalanche(const ContactModel &model, double *const *rows, const int *members,
                           int nmembers, double tol, AvalancheHooks &hooks, std::vector<int> &list,
                           std::vector<double> &ds)
 {
   AvalancheResult res;
-  int top = -1;
-  for (int m = 0; m < nmembers; ++m) top = std::max(top, members[m]);
-  if (static_cast<int>(ds.size()) < top + 1) ds.resize(top + 1);
   list.reserve(nmembers);
+  AvalancheField f = hooks.field();
   while (true) {
-    // all contacts over their thresholds at the start of the round
-    list.clear();
-    for (int m = 0; m < nmembers; ++m) {
-      const int i = members[m];
-      const double *st = rows[i];
-      const double th = st[CS_THRESHOLD];
-      if (th <= 0.0) continue;
-      const double e = st[CS_STRETCH] + hooks.field(i) / st[CS_STIFFNESS];
-      if (!(std::fabs(e) < th - ContactModel::tolerance(st, tol))) list.push_back(i);
-    }
+    // the contacts over their thresholds at the start of the round: in
+    // the order of their rows, whichever candidates were tested
+    candidates(rows, members, nmembers, tol, f, res.rounds == 0, list);
     const long all = hooks.global_sum(static_cast<long>(list.size()));
     if (all == 0) break;
     if (++res.rounds > AVALANCHE_MAX_ROUNDS)
@@ -236,16 +260,19 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
                                           "smaller ftilde)")));
     if (res.rounds == 1) res.trigger = all;
     res.size += all;
+    // (this rank's list may be empty while other ranks break)
+    const int top = list.empty() ? -1 : *std::max_element(list.begin(), list.end());
+    if (static_cast<int>(ds.size()) <= top) ds.resize(top + 1);
     for (const int i : list) {
       double *st = rows[i];
-      const double h = hooks.field(i);
+      const double h = f.h[i];
       const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
       const double s_old = st[CS_STRETCH];
-      ds[i] = model.break_once(st, hooks.tag(i), e, h, hooks.coupling(i)) - s_old;
+      ds[i] = model.break_once(st, hooks.tag(i), e, h, f.k[i]) - s_old;
     }
     res.local += static_cast<long>(list.size());
-    if (!model.reforms()) hooks.detached();
-    else hooks.changed(list.data(), static_cast<int>(list.size()), ds.data());
+    if (!model.reforms()) f = hooks.detached();
+    else f = hooks.changed(list.data(), static_cast<int>(list.size()), ds.data());
   }
   return res;
 }

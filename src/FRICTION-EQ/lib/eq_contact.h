@@ -139,18 +139,29 @@ class ContactModel {
    avalanche rounds over contacts coupled by an elastic field
 ------------------------------------------------------------------------- */
 
+// the field as the avalanche reads it, by row index: h_i, K_i = sum_j
+// k_ij, and the rows whose h_i changed in the update that produced it
+// (changed == nullptr: any row may have changed)
+struct AvalancheField {
+  const double *h = nullptr;
+  const double *k = nullptr;
+  const int *changed = nullptr;
+  int nchanged = 0;
+};
+
 // what the avalanche needs from its surroundings (LAMMPS: MPI, the field
 // of pair eq/elastic, the atoms of the group)
 class AvalancheHooks {
  public:
   virtual ~AvalancheHooks() = default;
   virtual long global_sum(long n) = 0;    // over all ranks
-  // contacts list[0..n) changed their stretch by ds[list[m]] at fixed positions
-  virtual void changed(const int *list, int n, const double *ds) = 0;
-  // contacts detached for good: the field is recomputed without them
-  virtual void detached() = 0;
-  virtual double field(int i) const = 0;       // h_i
-  virtual double coupling(int i) const = 0;    // K_i = sum_j k_ij
+  // the field at the start
+  virtual AvalancheField field() = 0;
+  // contacts list[0..n) changed their stretch by ds[list[m]] at fixed
+  // positions: the field after that change
+  virtual AvalancheField changed(const int *list, int n, const double *ds) = 0;
+  // contacts detached for good: the field recomputed without them
+  virtual AvalancheField detached() = 0;
   virtual uint64_t tag(int i) const = 0;
 };
 
@@ -162,8 +173,12 @@ struct AvalancheResult {
 };
 
 // the contacts are rows[members[m]], m < nmembers (detached ones are
-// skipped); every round scans them all.  tol: relative tolerance of the
-// breaking test (see tolerance()).  list, ds: scratch (ds indexed by row).
+// skipped).  The first round tests them all; a later round tests only the
+// rows whose h changed in the last update (those that broke among them),
+// when the field names them: the others stay below their thresholds.
+// The field names rows of the contacts only (rows[i] and h[i] exist).
+// tol: relative tolerance of the breaking test (see tolerance()).  list,
+// ds: scratch (ds indexed by row).
 AvalancheResult avalanche(const ContactModel &model, double *const *rows, const int *members,
                           int nmembers, double tol, AvalancheHooks &hooks, std::vector<int> &list,
                           std::vector<double> &ds);
