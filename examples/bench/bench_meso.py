@@ -11,6 +11,11 @@
 2. Cost per block-step against the number of blocks N = 1e3 ... 1e5 and
    the number of MPI ranks, at the default grid, with and without
    screening (nearest neighbours of a square lattice).
+3. Time against error under strong screening (examples/eq-meso/
+   in.eq-meso-screen): a chain of 30 blocks and a 12 x 6 square lattice
+   (nearest neighbours, Pi0 = 0.93 and 0.97) with a pinned stripe, eps of
+   every block after 150 x_c against the self-consistent lattice solution
+   (eqtools.meso.screening_lattice), for the default grid and finer ones.
 
   ./bench_meso.py                 both tables
   ./bench_meso.py --part grid     only the first
@@ -91,9 +96,46 @@ def size_table(out, sizes, ranks, dX=0.01, nsteps=300):
             print(f"{nx * ny:>8} {r:>5} {nsteps:>6} {row[0]:>10.2f} {row[1]:>10.2f}", flush=True)
 
 
+SCREEN = ROOT / "examples" / "eq-meso" / "in.eq-meso-screen"
+
+
+def screen_table(out, grids=(0.0, 1e-6, 5e-7, 2e-7, 1e-7)):
+    sys.path.insert(0, str(ROOT / "unittest" / "python"))
+    from test_eq_meso import dump_rows, lattice_reference  # noqa: E402
+    xc, nlam, xmax, dX = 1e-4, 100, 0.015, 2.5e-6
+    sd = 0.5 * xc / 12 ** 0.5    # thresholds uniform [0.75, 1.25] x_c
+    print(f"\ntime against error under screening: {nlam} contacts per block, thresholds uniform "
+          f"[0.75, 1.25] x_c, dX = {dX / xc:g} x_c per step, {xmax / xc:g} x_c; error: max |eps - "
+          f"lattice solution| / max eps; grid 0: the default (sd/8 of the unscreened thresholds); "
+          f"screened sd = sd (1 - Pi0)")
+    print(f"{'lattice':>10} {'Pi0':>5} {'grid':>8} {'screened sd/grid':>16} {'doubles':>8} "
+          f"{'error':>9} {'time s':>7}")
+    for name, nx, ny, yb, nn in (("chain 30", 30, 1, "f", 2), ("square 12x6", 12, 6, "p", 4)):
+        for pi0 in (0.93, 0.97):
+            kappa = pi0 / (nn * nlam)
+            for grid in grids:
+                d = Path(out) / f"screen_{nx}x{ny}_{pi0}_{grid:g}"
+                d.mkdir(parents=True, exist_ok=True)
+                t0 = time.time()
+                log = eqtools.run_lammps(SCREEN, {"nx": nx, "ny": ny, "nlam": nlam, "kappa": kappa,
+                                                  "grid": grid, "dX": dX, "Xmax": xmax,
+                                                  "yboundary": yb, "out": d}, cwd=d)
+                t = time.time() - t0
+                width = int(re.search(r"\((\d+) doubles per block\)", log).group(1))
+                du = float(re.search(r"; grid ([0-9.eE+-]+) \(", log).group(1))
+                a = dump_rows(d / "eps.dump")
+                sites = np.mod(np.c_[np.rint(a[:, 1] - a[:, 6]), np.rint(a[:, 2])], [nx, ny])
+                sliding = sites[:, 0] != 0
+                ref, _ = lattice_reference(sites, nx, ny, nlam, kappa, 1.01, sliding,
+                                           periodic_y=(yb == "p"))
+                err = np.max(np.abs(a[:, 3] - ref)) / ref.max()
+                print(f"{name:>10} {pi0:>5.2f} {du:>8.2g} {sd * (1 - pi0) / du:>16.2f} {width:>8d} "
+                      f"{err:>9.2e} {t:>7.1f}", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("--part", choices=["grid", "size", "all"], default="all")
+    ap.add_argument("--part", choices=["grid", "size", "screen", "all"], default="all")
     ap.add_argument("--sizes", default="1e3,1e4,1e5")
     ap.add_argument("--ranks", default="1,2")
     ap.add_argument("--out", default=str(HERE / "out" / "meso"))
@@ -106,6 +148,8 @@ def main():
     if a.part in ("size", "all"):
         size_table(out, [int(float(v)) for v in a.sizes.split(",")],
                    [int(v) for v in a.ranks.split(",")])
+    if a.part in ("screen", "all"):
+        screen_table(out)
     print(f"({time.time() - t0:.0f} s)")
 
 
