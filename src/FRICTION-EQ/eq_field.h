@@ -56,11 +56,15 @@
 namespace LAMMPS_NS {
 
 // coordinates that changed at fixed positions (the breaks of one
-// avalanche round): local atoms list[0..n), by dq[list[m]]
+// avalanche round): local atoms list[0..n), by dq[list[m]].  exact: the
+// source found every change, on every rank, small enough for an
+// incremental update to follow to rounding (false: the field recomputes;
+// the verdict is the same on all ranks, so that all take the same path)
 struct EQChangeSet {
   const int *list = nullptr;
   int n = 0;
   const double *dq = nullptr;
+  bool exact = true;
 };
 
 class EQCoordinateSource {

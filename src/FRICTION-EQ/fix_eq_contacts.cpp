@@ -73,18 +73,15 @@ constexpr double NOT_A_CONTACT = std::numeric_limits<double>::quiet_NaN();
 class FixEQContacts::Hooks : public AvalancheHooks {
  public:
   Hooks(FixEQContacts *f, EQElasticField *fld) : fix(f), elastic(fld), tags(f->atom->tag) {}
-  long global_sum(long n) override
+  void global_sum(long *v, int n) override
   {
-    if (fix->comm->nprocs == 1) return n;
-    long all = 0;
-    MPI_Allreduce(&n, &all, 1, MPI_LONG, MPI_SUM, fix->world);
-    return all;
+    if (fix->comm->nprocs > 1) MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_LONG, MPI_SUM, fix->world);
   }
   AvalancheField field() override { return pull(); }
   // the fix records the change set; the field pulls it when asked for h
-  AvalancheField changed(const int *list, int n, const double *ds) override
+  AvalancheField changed(const int *list, int n, const double *ds, bool exact) override
   {
-    fix->record_changes(list, n, ds);
+    fix->record_changes(list, n, ds, exact);
     return pull();
   }
   // contacts detached for good: the field without them, at fixed positions
@@ -624,7 +621,7 @@ bool FixEQContacts::source_changes(bigint since, EQChangeSet &set) const
   return true;
 }
 
-void FixEQContacts::record_changes(const int *list, int n, const double *ds)
+void FixEQContacts::record_changes(const int *list, int n, const double *ds, bool exact)
 {
   // the engine's new stretches themselves (not old + ds: exact whatever
   // the size of the change)
@@ -633,6 +630,7 @@ void FixEQContacts::record_changes(const int *list, int n, const double *ds)
   chg.list = list;
   chg.n = n;
   chg.dq = ds;
+  chg.exact = exact;
   chg_from = nversion++;
 }
 

@@ -142,7 +142,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   EQElasticField *field_now();
   void stretches();
   void field_step(bool allow_breaks);
-  void record_changes(const int *list, int n, const double *ds);
+  void record_changes(const int *list, int n, const double *ds, bool exact);
   void record_detached();
   void apply(bool allow_breaks);
   template <bool ORTHOGONAL> long scan(const EQUtil::Unwrap &unwrap, bool allow_breaks);

@@ -94,9 +94,6 @@ constexpr double CUT_MARGIN = 1.0e-8;
 // two coupled atoms closer than this fraction of their cutoff are at one
 // place (k ~ 1/r: 1e10 times its value at the cutoff)
 constexpr double OVERLAP = 1.0e-10;
-// a change of a coordinate by more than this many times its new size
-// is not followed incrementally (see scatter_exact())
-constexpr double CHANGE_MAX = 1.0e6;
 // default number of field updates between two drift checks
 constexpr int CHECK_DEFAULT = 1000;
 const char *USAGE = "expected 'pair_coeff I J ftilde lambda_c [rcut]' or "
@@ -554,7 +551,7 @@ void PairEQElastic::refresh()
     EQChangeSet set;
     const bool one_set = src->source_changes(version_seen, set);
     version_seen = version;
-    if (one_set && scatter_exact(set)) scatter(set);
+    if (one_set && set.exact) scatter(set);
     else recompute(src);    // the set of coupled atoms changed, or changes too large
   }
 }
@@ -882,19 +879,6 @@ void PairEQElastic::drift_check(EQCoordinateSource *src)
     drift_max = std::fmax(drift_max, std::fabs(hold[i] - h[i]));
     hscale_max = std::fmax(hscale_max, std::fmax(std::fabs(h[i]), ksum[i] * std::fabs(q[i])));
   }
-}
-
-// a change set the incremental update follows to rounding: every change
-// at most CHANGE_MAX times the size of the coordinate it leads to (a
-// stretch of 1e300 that breaks to 0.3 would leave 1e284 of rounding in
-// the partners' h: recomputed instead)
-bool PairEQElastic::scatter_exact(const EQChangeSet &set) const
-{
-  for (int m = 0; m < set.n; m++) {
-    const int i = set.list[m];
-    if (!(std::fabs(set.dq[i]) <= CHANGE_MAX * (1.0 + std::fabs(q[i] + set.dq[i])))) return false;
-  }
-  return true;
 }
 
 /* ----------------------------------------------------------------------

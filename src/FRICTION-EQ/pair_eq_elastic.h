@@ -206,7 +206,6 @@ class PairEQElastic : public Pair, public EQElasticField {
   void refresh();
   void recompute(EQCoordinateSource *src);
   void follow(EQCoordinateSource *src, bool count = true);
-  bool scatter_exact(const EQChangeSet &set) const;
   void scatter(const EQChangeSet &set);
   void sync_changed();
   void ghost_share(int j, double v)

@@ -83,11 +83,12 @@ class DenseField : public AvalancheHooks {
     }
     return f;
   }
-  long global_sum(long n) override { return n; }
+  void global_sum(long *, int) override {}    // one rank
   AvalancheField field() override { return view(false); }
-  AvalancheField changed(const int *list, int n, const double *) override
+  AvalancheField changed(const int *list, int n, const double *, bool exact) override
   {
     ++nchanged;
+    last_exact = exact;
     nbroken += n;
     recompute();
     names.clear();
@@ -113,6 +114,7 @@ class DenseField : public AvalancheHooks {
   bool name_changed;
   std::vector<int> names;
   int nchanged = 0, ndetached = 0;
+  bool last_exact = true;
   long nbroken = 0;
 };
 
@@ -456,9 +458,9 @@ TEST(Avalanche, LaterRoundsTestOnlyTheNamedRows)
   class Unnamed : public DenseField {
    public:
     using DenseField::DenseField;
-    AvalancheField changed(const int *list, int n, const double *ds) override
+    AvalancheField changed(const int *list, int n, const double *ds, bool exact) override
     {
-      DenseField::changed(list, n, ds);
+      DenseField::changed(list, n, ds, exact);
       names.clear();
       return view(true);    // names none
     }
@@ -496,7 +498,7 @@ TEST(Avalanche, RoundsWithBreaksOnOtherRanksOnly)
   class OtherRanks : public DenseField {
    public:
     using DenseField::DenseField;
-    long global_sum(long n) override { return n + (calls++ < 2 ? 3 : 0); }
+    void global_sum(long *v, int) override { v[0] += calls++ < 2 ? 3 : 0; }
     int calls = 0;
   };
   const ContactModel m = model(true, true, spec(make_delta(0.0), "delta 0"));
@@ -519,6 +521,32 @@ TEST(Avalanche, RoundsWithBreaksOnOtherRanksOnly)
   EXPECT_EQ(f.nchanged, 2);    // the field follows every round (collective)
   EXPECT_LE(ds.size(), static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) EXPECT_EQ(a[i][CS_NBREAK], 0.0);
+}
+
+// a change far larger than the stretch it leads to (a stretch of 1e12
+// re-formed at 0) is flagged, so that the field recomputes instead of
+// following it (1e12 x 1e-16 of rounding in every partner); ordinary
+// breaks are not
+TEST(Avalanche, ChangesTooLargeToFollowAreFlagged)
+{
+  // step crossing, reform_as stretch: the contact re-forms at exactly 0
+  const ContactModel m = model(false, false, spec(make_delta(0.0), "delta 0"));
+  const int n = 3;
+  for (const double s0 : {1.3, 1.0e12}) {
+    std::vector<std::vector<double>> a(n);
+    std::vector<double *> ra;
+    for (int i = 0; i < n; ++i) {
+      a[i] = fresh_row(m, 100 + i, 0.0);
+      a[i][CS_STRETCH] = i == 1 ? s0 : 0.1;
+      ra.push_back(a[i].data());
+    }
+    DenseField f(chain_matrix(n, 0.01), ra);
+    std::vector<int> members{0, 1, 2}, list;
+    std::vector<double> ds;
+    avalanche(m, ra.data(), members.data(), n, 0.0, f, list, ds);
+    ASSERT_GE(f.nchanged, 1);
+    EXPECT_EQ(f.last_exact, s0 < 10.0) << s0;
+  }
 }
 
 // reform none: the field is rebuilt without the detached contacts

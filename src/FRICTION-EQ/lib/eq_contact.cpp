@@ -247,7 +247,22 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
     // the contacts over their thresholds at the start of the round: in
     // the order of their rows, whichever candidates were tested
     candidates(rows, members, nmembers, tol, f, res.rounds == 0, list);
-    const long all = hooks.global_sum(static_cast<long>(list.size()));
+    // their breaks (this rank's own contacts: nothing global yet), and
+    // whether an incremental field can follow them; then the round's
+    // counts over all ranks, in one reduction
+    const int top = list.empty() ? -1 : *std::max_element(list.begin(), list.end());
+    if (static_cast<int>(ds.size()) <= top) ds.resize(top + 1);
+    long sums[2] = {static_cast<long>(list.size()), 0};
+    for (const int i : list) {
+      double *st = rows[i];
+      const double h = f.h[i];
+      const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
+      const double s_old = st[CS_STRETCH];
+      ds[i] = model.break_once(st, hooks.tag(i), e, h, f.k[i]) - s_old;
+      if (!(std::fabs(ds[i]) <= AVALANCHE_CHANGE_MAX * (1.0 + std::fabs(st[CS_STRETCH])))) ++sums[1];
+    }
+    hooks.global_sum(sums, 2);
+    const long all = sums[0];
     if (all == 0) break;
     if (++res.rounds > AVALANCHE_MAX_ROUNDS)
       throw BreakError("avalanche did not stop after " + std::to_string(AVALANCHE_MAX_ROUNDS) +
@@ -260,19 +275,9 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
                                           "smaller ftilde)")));
     if (res.rounds == 1) res.trigger = all;
     res.size += all;
-    // (this rank's list may be empty while other ranks break)
-    const int top = list.empty() ? -1 : *std::max_element(list.begin(), list.end());
-    if (static_cast<int>(ds.size()) <= top) ds.resize(top + 1);
-    for (const int i : list) {
-      double *st = rows[i];
-      const double h = f.h[i];
-      const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
-      const double s_old = st[CS_STRETCH];
-      ds[i] = model.break_once(st, hooks.tag(i), e, h, f.k[i]) - s_old;
-    }
     res.local += static_cast<long>(list.size());
     if (!model.reforms()) f = hooks.detached();
-    else f = hooks.changed(list.data(), static_cast<int>(list.size()), ds.data());
+    else f = hooks.changed(list.data(), static_cast<int>(list.size()), ds.data(), sums[1] == 0);
   }
   return res;
 }

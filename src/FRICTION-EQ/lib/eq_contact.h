@@ -154,12 +154,15 @@ struct AvalancheField {
 class AvalancheHooks {
  public:
   virtual ~AvalancheHooks() = default;
-  virtual long global_sum(long n) = 0;    // over all ranks
+  virtual void global_sum(long *v, int n) = 0;    // v[0..n) over all ranks, in place
   // the field at the start
   virtual AvalancheField field() = 0;
   // contacts list[0..n) changed their stretch by ds[list[m]] at fixed
-  // positions: the field after that change
-  virtual AvalancheField changed(const int *list, int n, const double *ds) = 0;
+  // positions: the field after that change.  exact: on every rank every
+  // change is at most AVALANCHE_CHANGE_MAX (1 + |new stretch|), so that
+  // an incremental update follows it to rounding (false: recompute; the
+  // same verdict on all ranks)
+  virtual AvalancheField changed(const int *list, int n, const double *ds, bool exact) = 0;
   // contacts detached for good: the field recomputed without them
   virtual AvalancheField detached() = 0;
   virtual uint64_t tag(int i) const = 0;
@@ -185,6 +188,10 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
 
 // an avalanche may take at most this many rounds
 constexpr int AVALANCHE_MAX_ROUNDS = 100000;
+// a change of a stretch by more than this many times the stretch it
+// leads to (plus 1) leaves more than rounding in a field updated
+// incrementally (a stretch of 1e300 that breaks to 0.3)
+constexpr double AVALANCHE_CHANGE_MAX = 1.0e6;
 
 }    // namespace feq
 
