@@ -41,7 +41,11 @@
      over the pairs of the list, cached with their k_ij at the list build;
    - a change set of the source (the breaks of an avalanche round) changes
      h of the partners only: O(breaks x neighbours), one reverse
-     communication per round;
+     communication per round carrying the touched ghosts' shares only;
+     the view names the owned atoms whose h changed (the fix tests only
+     those in the next round), and after breaks only the changed
+     coordinates go to the ghosts (once per step); a set the source flags
+     as too large to follow (on any rank) is recomputed on all ranks;
    - blocks (sites fixed): q = x - w along dir, h and the forces in one
      pass over the cached pairs in compute().
    Only the coupled ghosts of the lists (glist) are followed.  Every
