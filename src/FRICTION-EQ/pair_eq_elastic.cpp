@@ -934,7 +934,6 @@ void PairEQElastic::scatter(const EQChangeSet &set)
     }
   }
   hchanged.resize(nc);
-  gsorted = false;
   comm_mode = COMM_SHARES;
   EQCompat::reverse_comm(comm, this);
   for (const int j : gtouched) {
@@ -1215,10 +1214,8 @@ void PairEQElastic::unpack_reverse_comm(int n, int *list_, double *buf)
     if (j < nlocal) {
       h[j] += buf[2 + 2 * k];
       hchanged.push_back(j);
-    } else {
+    } else
       ghost_share(j, buf[2 + 2 * k]);
-      gsorted = false;
-    }
   }
 }
 

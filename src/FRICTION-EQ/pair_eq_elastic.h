@@ -213,6 +213,7 @@ class PairEQElastic : public Pair, public EQElasticField {
     if (!tmark[j]) {
       tmark[j] = 1;
       gtouched.push_back(j);
+      gsorted = false;
     }
     dh[j] += v;
   }

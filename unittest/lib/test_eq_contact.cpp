@@ -118,6 +118,24 @@ class DenseField : public AvalancheHooks {
   long nbroken = 0;
 };
 
+// n fresh contacts (tags 100 + i) with the stretches stretch(i, x_s of
+// contact i): their rows, and pointers to them in the avalanche's layout
+struct Rows {
+  std::vector<std::vector<double>> a;
+  std::vector<double *> r;
+};
+template <class F> Rows rows_with(const ContactModel &m, int n, F stretch)
+{
+  Rows c;
+  c.a.resize(n);
+  for (int i = 0; i < n; ++i) {
+    c.a[i] = fresh_row(m, 100 + i, 0.0);
+    c.a[i][CS_STRETCH] = stretch(i, c.a[i][CS_THRESHOLD]);
+  }
+  for (auto &row : c.a) c.r.push_back(row.data());
+  return c;
+}
+
 // chain of n contacts, nearest neighbours coupled by g, periodic
 std::vector<std::vector<double>> chain_matrix(int n, double g)
 {
@@ -392,13 +410,9 @@ TEST(Avalanche, RoundsAreSynchronous)
 {
   const ContactModel m = model(false, false, spec(make_delta(0.0), "delta 0"));
   const int n = 4;
-  std::vector<std::vector<double>> a(n);
-  std::vector<double *> ra;
-  for (int i = 0; i < n; ++i) {
-    a[i] = fresh_row(m, 100 + i, 0.0);
-    a[i][CS_STRETCH] = (i == 1 || i == 2) ? 1.3 : 0.1;
-    ra.push_back(a[i].data());
-  }
+  Rows c = rows_with(m, n, [](int i, double) { return (i == 1 || i == 2) ? 1.3 : 0.1; });
+  auto &a = c.a;
+  auto &ra = c.r;
   DenseField f(chain_matrix(n, 0.01), ra);
   std::vector<int> members{0, 1, 2, 3}, list;
   std::vector<double> ds;
@@ -423,15 +437,14 @@ TEST(Avalanche, NamedChangesGiveTheSameAvalancheAsFullScans)
   for (const bool exact : {true, false}) {
     const ContactModel m = model(exact, exact, spec(make_uniform(-0.3, 0.3), "uniform -0.3 0.3"));
     for (double g : {0.05, 0.3, 1.2}) {
-      std::vector<std::vector<double>> a(n), b(n);
-      for (int i = 0; i < n; ++i) {
-        a[i] = fresh_row(m, 100 + i, 0.0);
-        const double th = a[i][CS_THRESHOLD];
-        a[i][CS_STRETCH] = (i % 13 == 5) ? th + 0.1 : th * (0.55 + 0.4 * ((i * 7) % 10) / 10.0);
-        b[i] = a[i];
-      }
-      std::vector<double *> ra, rb;
-      for (int i = 0; i < n; ++i) ra.push_back(a[i].data()), rb.push_back(b[i].data());
+      auto stretch = [](int i, double th) {
+        return (i % 13 == 5) ? th + 0.1 : th * (0.55 + 0.4 * ((i * 7) % 10) / 10.0);
+      };
+      Rows ca = rows_with(m, n, stretch), cb = rows_with(m, n, stretch);
+      auto &a = ca.a;
+      auto &b = cb.a;
+      auto &ra = ca.r;
+      auto &rb = cb.r;
       DenseField full(chain_matrix(n, g), ra), named(chain_matrix(n, g), rb, true);
       std::vector<int> members(n), la, lb;
       for (int i = 0; i < n; ++i) members[i] = i;
@@ -467,15 +480,10 @@ TEST(Avalanche, LaterRoundsTestOnlyTheNamedRows)
   };
   const ContactModel m = model(true, true, spec(make_delta(0.0), "delta 0"));
   const int n = 3;
-  std::vector<std::vector<double>> a(n), b(n);
-  std::vector<double *> ra, rb;
-  for (int i = 0; i < n; ++i) {
-    a[i] = fresh_row(m, 100 + i, 0.0);
-    a[i][CS_STRETCH] = a[i][CS_THRESHOLD] * (i == 0 ? 1.3 : 0.99);
-    b[i] = a[i];
-    ra.push_back(a[i].data());
-    rb.push_back(b[i].data());
-  }
+  auto stretch = [](int i, double th) { return th * (i == 0 ? 1.3 : 0.99); };
+  Rows ca = rows_with(m, n, stretch), cb = rows_with(m, n, stretch);
+  auto &ra = ca.r;
+  auto &rb = cb.r;
   Unnamed f(chain_matrix(n, 0.5), ra);
   DenseField full(chain_matrix(n, 0.5), rb);
   std::vector<int> members{0, 1, 2}, list;
@@ -503,13 +511,9 @@ TEST(Avalanche, RoundsWithBreaksOnOtherRanksOnly)
   };
   const ContactModel m = model(true, true, spec(make_delta(0.0), "delta 0"));
   const int n = 4;
-  std::vector<std::vector<double>> a(n);
-  std::vector<double *> ra;
-  for (int i = 0; i < n; ++i) {
-    a[i] = fresh_row(m, 100 + i, 0.0);
-    a[i][CS_STRETCH] = 0.1;
-    ra.push_back(a[i].data());
-  }
+  Rows c = rows_with(m, n, [](int, double) { return 0.1; });
+  auto &a = c.a;
+  auto &ra = c.r;
   OtherRanks f(chain_matrix(n, 0.01), ra);
   std::vector<int> members{0, 1, 2, 3}, list(64, 5000);    // stale entries of an earlier use
   list.clear();
@@ -533,13 +537,8 @@ TEST(Avalanche, ChangesTooLargeToFollowAreFlagged)
   const ContactModel m = model(false, false, spec(make_delta(0.0), "delta 0"));
   const int n = 3;
   for (const double s0 : {1.3, 1.0e12}) {
-    std::vector<std::vector<double>> a(n);
-    std::vector<double *> ra;
-    for (int i = 0; i < n; ++i) {
-      a[i] = fresh_row(m, 100 + i, 0.0);
-      a[i][CS_STRETCH] = i == 1 ? s0 : 0.1;
-      ra.push_back(a[i].data());
-    }
+    Rows c = rows_with(m, n, [s0](int i, double) { return i == 1 ? s0 : 0.1; });
+    auto &ra = c.r;
     DenseField f(chain_matrix(n, 0.01), ra);
     std::vector<int> members{0, 1, 2}, list;
     std::vector<double> ds;
@@ -554,13 +553,8 @@ TEST(Avalanche, DetachedContactsLeaveTheField)
 {
   const ContactModel m = model(true, true, none());
   const int n = 3;
-  std::vector<std::vector<double>> a(n);
-  std::vector<double *> ra;
-  for (int i = 0; i < n; ++i) {
-    a[i] = fresh_row(m, 100 + i, 0.0);
-    a[i][CS_STRETCH] = i == 0 ? 2.0 : 0.1;
-    ra.push_back(a[i].data());
-  }
+  Rows c = rows_with(m, n, [](int i, double) { return i == 0 ? 2.0 : 0.1; });
+  auto &ra = c.r;
   DenseField f(chain_matrix(n, 0.01), ra);
   std::vector<int> members{0, 1, 2}, list;
   std::vector<double> ds;
@@ -577,13 +571,8 @@ TEST(Avalanche, RunawayIsAnError)
 {
   const ContactModel m = model(true, false, spec(make_delta(0.0), "delta 0"));
   const int n = 2;
-  std::vector<std::vector<double>> a(n);
-  std::vector<double *> ra;
-  for (int i = 0; i < n; ++i) {
-    a[i] = fresh_row(m, 100 + i, 0.0);
-    a[i][CS_STRETCH] = i == 0 ? 1.3 : -1.3;
-    ra.push_back(a[i].data());
-  }
+  Rows c = rows_with(m, n, [](int i, double) { return i == 0 ? 1.3 : -1.3; });
+  auto &ra = c.r;
   DenseField f(chain_matrix(n, 50.0), ra);
   std::vector<int> members{0, 1}, list;
   std::vector<double> ds;
