@@ -1,0 +1,110 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package: temperature, velocity and aging of EQ contacts
+   (Braun & Peyrard, PRE 83, 046129 (2011); the forms are the package's,
+   see doc/src/fix_eq_contacts.rst).  LAMMPS-free.
+
+   Thermally activated breaking: a contact at stretch |x| below its
+   threshold x_s crosses a barrier E = eps_a (x_s/x_c)^p u^(3/2),
+   u = 1 - |x|/x_s, at the rate nu = omega u^q exp(-E/k_B T); with
+   theta = k_B T / eps_a, nu = omega u^q exp(-(x_s/x_c)^p u^(3/2)/theta).
+   x_c is the mean threshold.  |x| >= x_s breaks at once, as at T = 0.
+
+   Aging: the threshold grows with the contact's age t (time since it
+   formed): x_s(t) = x_s0 A(t), A = 1 + beta ln(1 + t/tau_a) (log) or
+   1 + beta (1 - exp(-t/tau_a)) (exp); the barrier uses x_s(t).  A broken
+   contact may stay absent for a delay tau (fixed, or exponential with
+   mean tau) before it re-forms.
+------------------------------------------------------------------------- */
+
+#ifndef FEQ_THERMAL_H
+#define FEQ_THERMAL_H
+
+#include <cmath>
+
+namespace feq {
+
+enum class AgingLaw { NONE, LOG, EXP };
+enum class DelayKind { NONE, FIXED, EXPONENTIAL };
+
+struct ThermalSpec {
+  double theta = 0.0;    // k_B T / eps_a; 0: athermal
+  double omega = 1.0;    // attempt frequency (1/time)
+  double p = 0.0;        // barrier scale (x_s/x_c)^p
+  double q = 0.0;        // prefactor u^q
+  double xc = 1.0;       // mean threshold (set from P_c)
+  AgingLaw aging = AgingLaw::NONE;
+  double beta = 0.0, tau_a = 1.0;
+  DelayKind delay = DelayKind::NONE;
+  double tau = 0.0;      // (mean) delay
+  double rest = 0.0;     // age of the contacts when the fix is defined
+
+  bool thermal() const { return theta > 0.0; }
+  // anything beyond the athermal, ageless, instant-reform model
+  bool active() const
+  {
+    return thermal() || aging != AgingLaw::NONE || (delay != DelayKind::NONE && tau > 0.0) ||
+        rest > 0.0;
+  }
+};
+
+class ThermalModel {
+ public:
+  explicit ThermalModel(const ThermalSpec &s) : spec(s) {}
+  const ThermalSpec &params() const { return spec; }
+
+  // threshold factor A(t) at age t >= 0
+  double factor(double age) const
+  {
+    switch (spec.aging) {
+      case AgingLaw::LOG: return 1.0 + spec.beta * std::log1p(age / spec.tau_a);
+      case AgingLaw::EXP: return 1.0 - spec.beta * std::expm1(-age / spec.tau_a);
+      default: return 1.0;
+    }
+  }
+
+  // breaking rate at stretch |x| < xs (current threshold); 0 at T = 0
+  double rate(double x, double xs) const
+  {
+    if (!(spec.theta > 0.0)) return 0.0;
+    const double u = 1.0 - std::fabs(x) / xs;
+    if (!(u > 0.0)) return spec.q > 0.0 ? 0.0 : spec.omega;
+    const double scale = spec.p == 0.0 ? 1.0 : std::pow(xs / spec.xc, spec.p);
+    const double pre = spec.q == 0.0 ? spec.omega : spec.omega * std::pow(u, spec.q);
+    return pre * std::exp(-scale * u * std::sqrt(u) / spec.theta);
+  }
+
+  // hazard accumulated over a time h while the stretch goes linearly from
+  // x0 to x1 and the age from a0 to a0 + h (Simpson's rule)
+  double hazard(double x0, double x1, double a0, double h, double xs0) const
+  {
+    if (!(spec.theta > 0.0) || !(h > 0.0)) return 0.0;
+    const double xm = 0.5 * (x0 + x1);
+    return h / 6.0 *
+        (rate(x0, xs0 * factor(a0)) + 4.0 * rate(xm, xs0 * factor(a0 + 0.5 * h)) +
+         rate(x1, xs0 * factor(a0 + h)));
+  }
+
+ private:
+  ThermalSpec spec;
+};
+
+}    // namespace feq
+
+#endif
