@@ -62,7 +62,8 @@ namespace {
 // sums kept per rank: friction force, breaks in step, attached, energy,
 // sum of stretches, contacts, breaks since the fix was defined
 enum { SUM_FORCE, SUM_BREAKS, SUM_ATTACHED, SUM_ENERGY, SUM_STRETCH, SUM_COUNT, SUM_TOTAL, NSUM };
-const char *KEYWORDS = "threshold, reform, stiffness, dir, crossing, start, reform_as, avalanches";
+const char *KEYWORDS = "threshold, reform, stiffness, dir, crossing, start, reform_as, avalanches, "
+                       "thermal, barrier, aging, delay, rest";
 constexpr double NOT_A_CONTACT = std::numeric_limits<double>::quiet_NaN();
 }    // namespace
 
@@ -119,12 +120,13 @@ struct FixEQContacts::Args {
   bool exact = true, start_reform = false, reform_force = true;
   bool have_threshold = false;
   feq::DistributionSpec threshold, reform, stiffness;
+  feq::ThermalKeywords thermal;
   std::string avfile;
 };
 
 FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
     FixEQPerAtom(lmp, narg, arg), break_tol(0.0), interacting(0), avfp(nullptr), av_flag(0),
-    rounds_last(0), ran(0), nevaluation(0), nversion(0), chg_from(-1)
+    rounds_last(0), ran(0), in_setup(0), nevaluation(0), nversion(0), chg_from(-1)
 {
   EQCite::add(lmp);
   name = fmt::format("fix {} eq/contacts", id);
@@ -139,6 +141,9 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
                    ncontacts, "xyz"[idir], a.threshold.text, a.threshold.dist->mean(),
                    a.reform.text, a.reform_force ? "force" : "stretch", a.stiffness.text,
                    a.kc * a.stiffness.dist->mean(), a.exact ? "exact" : "step");
+  if (model->thermal_active() && comm->me == 0)
+    utils::logmesg(lmp, "fix eq/contacts: {} (theta = k_B T/eps_a = {:.6g})\n", a.thermal.text(),
+                   model->thermal_model().params().theta);
   if (av_flag) open_avalanches(a.avfile);
 
   restart_global = 1;
@@ -152,7 +157,7 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   energy_global_flag = 1;
   respa_level_support = 1;
   ilevel_respa = 0;
-  peratom_setup(CS_NCOL, CS_NCOL);
+  peratom_setup(model->columns(), model->columns());
 
   // relaxed contacts at the current positions (or stretched by R), with
   // their stretches as every evaluation at these positions finds them (x -
@@ -168,6 +173,7 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
         error->one(FLERR, "Fix eq/contacts: {}", e.what());
       }
       st[CS_STRETCH] = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
+      if (model->thermal_active()) st[CT_AGE] = model->thermal_model().params().rest;
     }
 
   for (double &v : local_sum) v = 0.0;
@@ -220,6 +226,8 @@ void FixEQContacts::parse(int narg, char **arg, Args &a)
         a.start_reform = feq::parse_choice(args, iarg, kw, {"relaxed", "reform"}) == 1;
       } else if (kw == "reform_as") {
         a.reform_force = feq::parse_choice(args, iarg, kw, {"stretch", "force"}) == 1;
+      } else if (feq::parse_thermal_keyword(kw, args, iarg, number, a.thermal)) {
+        // temperature, aging, delays (lib/eq_thermal)
       } else if (kw == "avalanches") {
         if (iarg >= args.size()) throw feq::SpecError("avalanches: missing file name");
         a.avfile = args[iarg++];
@@ -273,8 +281,9 @@ bigint FixEQContacts::check(const Args &a)
 void FixEQContacts::make_model(const Args &a)
 {
   try {
+    const ThermalSpec thermal = a.thermal.finish(force->boltz, a.threshold.dist->mean());
     model.reset(new ContactModel(a.kc, static_cast<uint64_t>(seed), a.threshold, a.reform,
-                                 a.stiffness, a.exact, a.reform_force, a.start_reform));
+                                 a.stiffness, a.exact, a.reform_force, a.start_reform, thermal));
   } catch (const feq::SpecError &e) {
     error->all(FLERR, "Fix eq/contacts {}", e.what());
   }
@@ -345,9 +354,25 @@ void FixEQContacts::init()
   break_tol = 0.0;
   for (int i = 0; i < modify->nfix; i++) {
     auto *driver = dynamic_cast<EQEventDriver *>(modify->fix[i]);
-    if (driver && strcmp(driver->driver_target(), id) == 0)
+    if (driver && strcmp(driver->driver_target(), id) == 0) {
       break_tol = std::max(break_tol, driver->driver_tolerance());
+      if (model->thermal_active())
+        error->all(FLERR, "Fix {} eq/contacts: the keywords {} need time, and fix {} moves the "
+                          "slider from break to break without it: drive the slider with an "
+                          "integrator (fix move, fix nve) instead", id, THERMAL_KEYWORDS,
+                   modify->fix[i]->id);
+    }
   }
+  if (field && model->thermal_active())
+    error->all(FLERR, "Fix {} eq/contacts: the keywords {} are not supported with pair style "
+                      "eq/elastic yet (interacting contacts are athermal and ageless): remove them "
+                      "or the pair style", id, THERMAL_KEYWORDS);
+}
+
+// formed, and not waiting to re-form (temperature, aging or delays)
+bool FixEQContacts::attached(const double *st) const
+{
+  return st[CS_THRESHOLD] > 0.0 && !(model->thermal_active() && st[CT_WAIT] > 0.0);
 }
 
 // the field of this run, if it is still the one found at init
@@ -406,6 +431,7 @@ void FixEQContacts::setup(int vflag)
     // pair eq/elastic would be stale (per-atom output, next_event())
     for (int i = 0; i < atom->nlocal; i++) state[i][CS_FIELD] = 0.0;
   }
+  in_setup = 1;    // no time passes in the set-up of a run
   if (utils::strmatch(update->integrate_style, "^verlet"))
     post_force(vflag);
   else {
@@ -413,6 +439,7 @@ void FixEQContacts::setup(int vflag)
     post_force_respa(vflag, ilevel_respa, 0);
     static_cast<Respa *>(update->integrate)->copy_f_flevel(ilevel_respa);
   }
+  in_setup = 0;
 }
 
 void FixEQContacts::min_setup(int /*vflag*/)
@@ -478,7 +505,12 @@ void FixEQContacts::apply(bool allow_breaks)
   const EQUtil::Unwrap unwrap(atom, domain, idir);
   long nb = 0;
   try {
-    nb = unwrap.orthogonal() ? scan<true>(unwrap, allow_breaks) : scan<false>(unwrap, allow_breaks);
+    if (model->thermal_active())
+      nb = scan_thermal(unwrap, allow_breaks, in_setup || !allow_breaks ? 0.0 : update->dt);
+    else if (unwrap.orthogonal())
+      nb = scan<true>(unwrap, allow_breaks);
+    else
+      nb = scan<false>(unwrap, allow_breaks);
   } catch (const BreakError &e) {
     error->one(FLERR, "Fix eq/contacts: {}", e.what());
   }
@@ -523,6 +555,68 @@ template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap
     const double fc = st[CS_STIFFNESS] * s;
     st[CS_FORCE] = fc;
     fd[3 * i] -= fc;
+    fsum += fc;
+    esum += fc * s;
+    ssum += s;
+    natt += 1.0;
+  }
+  local_breaks_total += nb;
+  local_sum[SUM_FORCE] = fsum;
+  local_sum[SUM_ATTACHED] = natt;
+  local_sum[SUM_ENERGY] = 0.5 * esum;
+  local_sum[SUM_STRETCH] = ssum;
+  local_sum[SUM_COUNT] = ncount;
+  local_sum[SUM_TOTAL] = static_cast<double>(local_breaks_total);
+  reduced_valid = 0;
+  return nb;
+}
+
+/* ----------------------------------------------------------------------
+   with temperature, aging or delays: each contact advances by the time
+   step in lib/eq_contact (ContactModel::advance()); dt = 0 in the set-up
+   of a run.  Without breaks (minimization) the contacts hold and do not
+   age.  A waiting contact's anchor follows its atom (the motion of the
+   next step is measured from it).
+------------------------------------------------------------------------- */
+
+long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt)
+{
+  const int *const mask = atom->mask;
+  const tagint *const tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  double **const f = atom->f;
+  double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = 0.0;
+  long nb = 0;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double *const st = state[i];
+    ncount += 1.0;
+    const uint64_t id = static_cast<uint64_t>(tag[i]);
+    if (st[CS_THRESHOLD] == 0.0) model->form(st, id, unwrap(i));
+    const double xu = unwrap(i);
+    if (st[CS_THRESHOLD] > 0.0) {
+      const double m = unwrap.stretch(xu - st[CS_ANCHOR]);
+      if (!allow_breaks) {
+        if (st[CT_WAIT] > 0.0) st[CS_ANCHOR] = xu;
+        else st[CS_STRETCH] = m;
+      } else {
+        const ThermalStepResult r = model->advance(st, id, m, dt, nb);
+        if (r.attached && r.renewed) {
+          st[CS_ANCHOR] = xu - r.stretch;
+          st[CS_STRETCH] = unwrap.stretch(xu - st[CS_ANCHOR]);
+        } else if (!r.attached && st[CS_THRESHOLD] > 0.0) {
+          st[CS_ANCHOR] = xu;
+        }
+      }
+    }
+    if (!(st[CS_THRESHOLD] > 0.0) || st[CT_WAIT] > 0.0) {
+      st[CS_STRETCH] = st[CS_FORCE] = 0.0;
+      continue;
+    }
+    const double s = st[CS_STRETCH];
+    const double fc = st[CS_STIFFNESS] * s;
+    st[CS_FORCE] = fc;
+    f[i][idir] -= fc;
     fsum += fc;
     esum += fc * s;
     ssum += s;
@@ -713,7 +807,7 @@ void FixEQContacts::tally(double **f)
     if (!(mask[i] & bit)) continue;
     double *const st = rows + i * width;
     ncount += 1.0;
-    if (st[CS_THRESHOLD] <= 0.0) continue;
+    if (!attached(st)) continue;
     const double s = st[CS_STRETCH];
     const double fc = st[CS_STIFFNESS] * s;
     st[CS_FORCE] = fc;
@@ -780,7 +874,7 @@ void FixEQContacts::outputs_before_run()
   const int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++) {
     double *st = state[i];
-    if ((mask[i] & groupbit) && st[CS_THRESHOLD] > 0.0)
+    if ((mask[i] & groupbit) && attached(st))
       st[CS_STRETCH] = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
   }
   tally(nullptr);
@@ -866,6 +960,10 @@ void FixEQContacts::check_restored(int i)
     why = fmt::format("threshold {} with stiffness {}", th, st[CS_STIFFNESS]);
   else if (!(nb >= 0.0 && nb <= 9007199254740992.0 && nb == std::floor(nb)))
     why = fmt::format("break count {}", nb);
+  if (why.empty() && model->thermal_active() &&
+      !(st[CT_BUDGET] >= 0.0 && st[CT_AGE] >= 0.0 && st[CT_WAIT] >= 0.0))
+    why = fmt::format("hazard budget {}, age {}, delay left {}", st[CT_BUDGET], st[CT_AGE],
+                      st[CT_WAIT]);
   if (!why.empty())
     error->one(FLERR, "Fix {} eq/contacts: the restart file's contact {} is garbled: {} (a "
                       "corrupt file)", id, atom->tag[i], why);

@@ -112,6 +112,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   int av_flag;                     // avalanche records requested
   int rounds_last;                 // rounds of the last step's avalanche
   int ran;                         // a run or minimization has set this fix up
+  int in_setup;                    // in setup(): no time passes
 
   // the coordinates this fix owns for the field: the stretches of the
   // local contacts at the current evaluation (NaN: not a contact), the
@@ -146,6 +147,8 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void record_detached();
   void apply(bool allow_breaks);
   template <bool ORTHOGONAL> long scan(const EQUtil::Unwrap &unwrap, bool allow_breaks);
+  bool attached(const double *st) const;
+  long scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt);
   bool settle(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, long &nb);
   void apply_forces();
   void tally(double **f);

@@ -41,9 +41,11 @@ std::string num(double v)
 
 ContactModel::ContactModel(double kc, uint64_t seed_, const DistributionSpec &threshold_,
                            const DistributionSpec &reform_, const DistributionSpec &stiffness_,
-                           bool exact_, bool reform_force_, bool start_reform_) :
+                           bool exact_, bool reform_force_, bool start_reform_,
+                           const ThermalSpec &thermal_) :
     k0(kc), seed(seed_), threshold(threshold_), reform(reform_), stiffness(stiffness_),
-    exact(exact_), reform_force(reform_force_), start_reform(start_reform_)
+    exact(exact_), reform_force(reform_force_), start_reform(start_reform_), thermal(thermal_),
+    thermal_on(thermal_.active())
 {
   if (!threshold.dist) throw SpecError("threshold: missing distribution");
   if (!(k0 > 0.0) || !std::isfinite(k0)) throw SpecError("kc must be finite and > 0");
@@ -102,6 +104,24 @@ void ContactModel::form(double *st, uint64_t tag, double xu) const
   st[CS_STIFFNESS] = k;
   st[CS_ANCHOR] = xu - s0;
   st[CS_FIELD] = 0.0;
+  if (thermal_on) start_life(st, tag, event, off);
+}
+
+namespace {
+// an Exp(1) variate, with full relative precision in both tails
+inline double exponential(const Uniform &u)
+{
+  return -std::log1p(-u.one_minus_u);
+}
+}    // namespace
+
+void ContactModel::start_life(double *st, uint64_t tag, uint64_t event, uint32_t off) const
+{
+  // drawn at T = 0 too (never used there), so that a restart at T > 0 finds it
+  st[CT_BUDGET] = exponential(draw(seed, tag, event, STREAM_BUDGET + off));
+  st[CT_AGE] = 0.0;
+  st[CT_WAIT] = 0.0;
+  st[CT_PENDING] = 0.0;
 }
 
 void ContactModel::depart(double *st)
@@ -166,6 +186,110 @@ double ContactModel::break_once(double *st, uint64_t tag, double e, double h, do
   st[CS_STRETCH] = s_new;
   st[CS_ANCHOR] += s_old - s_new;
   return s_new;
+}
+
+/* ----------------------------------------------------------------------
+   one step of a contact with temperature, aging or delays.  The step is
+   walked in pieces [f, 1] of its duration: an attached piece ends at a
+   break (threshold crossing, or the budget exhausted by the hazard) or at
+   the end of the step; a waiting piece ends when the delay is over or at
+   the end of the step.  With crossing step every break and every
+   re-formation happens at the end of the step.
+------------------------------------------------------------------------- */
+
+void ContactModel::check_finite(const double *st, uint64_t tag, double m, bool waiting) const
+{
+  if (std::isfinite(m)) return;
+  throw BreakError((waiting ? "motion of the atom of waiting contact " : "stretch of contact ") +
+                   std::to_string(tag) + " is " + num(m) + " (threshold " +
+                   num(st[CS_THRESHOLD]) +
+                   "; numerical instability: check the timestep, the forces and the integrator)");
+}
+
+ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, double dt,
+                                        long &nbreaks) const
+{
+  ThermalStepResult res;
+  const bool waiting0 = st[CT_WAIT] > 0.0;
+  check_finite(st, tag, m, waiting0);
+  // motion of the atom per unit fraction of the step, and the stretch at f
+  const double motion = waiting0 ? m : m - st[CS_STRETCH];
+  double s_a = waiting0 ? 0.0 : st[CS_STRETCH];
+  double f = 0.0;
+  int nb = 0;
+  while (true) {
+    if (st[CS_THRESHOLD] < 0.0) return res;    // detached for good
+    const double h = (1.0 - f) * dt;
+    if (st[CT_WAIT] > 0.0) {    // waiting: re-forms when the delay is over
+      if (st[CT_WAIT] > h) {
+        st[CT_WAIT] -= h;
+        st[CS_STRETCH] = 0.0;
+        return res;
+      }
+      f = exact ? f + st[CT_WAIT] / dt : 1.0;
+      if (!(f < 1.0)) f = 1.0;
+      st[CT_WAIT] = 0.0;
+      s_a = st[CT_PENDING];
+      st[CT_PENDING] = 0.0;
+      res.renewed = true;    // a new anchor
+      continue;
+    }
+    // attached over [f, 1]: the stretch goes from s_a to s_b, the age from a_a to a_a + h
+    const double s_b = s_a + motion * (1.0 - f);
+    const double a_a = st[CT_AGE], xs0 = st[CS_THRESHOLD];
+    double g = 1.0;    // fraction of the piece at which it breaks
+    bool broke = false;
+    const double d_b = std::fabs(s_b) - xs0 * thermal.factor(a_a + h);
+    if (!(d_b < 0.0)) {    // crosses its threshold within the piece
+      const double d_a = std::fabs(s_a) - xs0 * thermal.factor(a_a);
+      g = d_a < 0.0 ? d_a / (d_a - d_b) : 0.0;
+      broke = true;
+    }
+    const double dH = thermal.hazard(s_a, s_a + (s_b - s_a) * g, a_a, h * g, xs0);
+    if (dH > 0.0 && dH >= st[CT_BUDGET]) {    // thermal break, first
+      g *= st[CT_BUDGET] / dH;
+      broke = true;
+    }
+    if (!broke) {
+      st[CT_BUDGET] -= dH;
+      st[CT_AGE] = a_a + h;
+      st[CS_STRETCH] = s_b;
+      res.stretch = s_b;
+      res.attached = true;
+      return res;
+    }
+    // the break, at fraction fb of the step (the end with crossing step)
+    const double fb = exact ? std::min(1.0, f + g * (1.0 - f)) : 1.0;
+    const double s_break = s_a + motion * (fb - f);
+    const double sign = (s_break != 0.0 ? s_break : s_b) >= 0.0 ? 1.0 : -1.0;
+    if (++nb > MAX_BREAKS_PER_STEP)
+      throw BreakError("contact " + std::to_string(tag) + " broke more than " +
+                       std::to_string(MAX_BREAKS_PER_STEP) + " times in one step (stretch " +
+                       num(m) + " at the end of the step, threshold " + num(st[CS_THRESHOLD]) +
+                       "); reduce the timestep or check the reform and threshold distributions");
+    ++nbreaks;
+    res.renewed = true;
+    const uint64_t event = static_cast<uint64_t>(st[CS_NBREAK]) + 1;
+    const double r = renew(st, tag, event);
+    if (std::isnan(r)) {
+      st[CT_AGE] = st[CT_WAIT] = st[CT_PENDING] = 0.0;
+      return res;
+    }
+    start_life(st, tag, event, 0u);
+    const ThermalSpec &sp = thermal.params();
+    double wait = 0.0;
+    if (sp.delay == DelayKind::FIXED) wait = sp.tau;
+    if (sp.delay == DelayKind::EXPONENTIAL)
+      wait = sp.tau * exponential(draw(seed, tag, event, STREAM_DELAY));
+    f = fb;
+    if (wait > 0.0) {
+      st[CT_WAIT] = wait;
+      st[CT_PENDING] = sign * r;
+      st[CS_STRETCH] = 0.0;
+    } else {
+      s_a = sign * r;
+    }
+  }
 }
 
 /* ----------------------------------------------------------------------

@@ -55,6 +55,7 @@
 #define FEQ_CONTACT_H
 
 #include "eq_distribution.h"
+#include "eq_thermal.h"
 
 #include <cmath>
 #include <cstdint>
@@ -76,6 +77,23 @@ enum ContactColumn : int {
   CS_NCOL
 };
 
+// further columns of a contact's row with temperature, aging or delays
+// (eq_thermal.h): the row is then CT_NCOL wide
+enum ThermalColumn : int {
+  CT_BUDGET = CS_NCOL,    // hazard the contact can still take before it breaks (Exp(1) at formation)
+  CT_AGE,                 // time since the contact formed
+  CT_WAIT,                // > 0: broken, re-forms after this time (stretch CS_STRETCH is 0)
+  CT_PENDING,             // the stretch it re-forms with, while it waits
+  CT_NCOL
+};
+
+// one step of a contact with temperature, aging or delays
+struct ThermalStepResult {
+  double stretch = 0.0;    // at the end of the step (0: absent)
+  bool attached = false;   // formed at the end of the step
+  bool renewed = false;    // broke or re-formed during the step: its anchor is new
+};
+
 // a contact cannot be handled (numerical instability, runaway breaking):
 // the message names the contact and what to change
 class BreakError : public std::runtime_error {
@@ -89,7 +107,12 @@ class ContactModel {
   // per-contact stiffness factors (text "constant": all k = kc)
   ContactModel(double kc, uint64_t seed, const DistributionSpec &threshold,
                const DistributionSpec &reform, const DistributionSpec &stiffness, bool exact,
-               bool reform_force, bool start_reform);
+               bool reform_force, bool start_reform, const ThermalSpec &thermal = ThermalSpec());
+
+  // doubles per contact row: CS_NCOL, or CT_NCOL with temperature, aging or delays
+  int columns() const { return thermal_on ? static_cast<int>(CT_NCOL) : static_cast<int>(CS_NCOL); }
+  bool thermal_active() const { return thermal_on; }
+  const ThermalModel &thermal_model() const { return thermal; }
 
   // a contact forms at an atom with unwrapped coordinate xu: its first
   // formation (event 0), or a re-entry into the group (row marked by
@@ -114,6 +137,17 @@ class ContactModel {
     return rel > 0.0 ? rel * (1.0 + std::abs(st[CS_ANCHOR]) + std::abs(st[CS_STRETCH])) : 0.0;
   }
 
+  // with temperature, aging or delays (row of CT_NCOL): one time step dt
+  // of a contact.  m: for an attached contact its stretch at the end of
+  // the step (the slider's position minus the anchor), for a waiting one
+  // the distance its atom moved in the step; the motion is taken linear in
+  // time.  The contact breaks when |s| reaches x_s0 A(age) or when the
+  // hazard of thermal activation (Simpson's rule over the step) exhausts
+  // its budget; with crossing exact at that instant within the step, the
+  // rest of the motion going into the next life (with crossing step: at
+  // the end of the step).  A broken contact waits its delay, then re-forms.
+  ThermalStepResult advance(double *st, uint64_t tag, double m, double dt, long &nbreaks) const;
+
   bool reforms() const { return reform.dist != nullptr; }
   bool reform_as_force() const { return reform_force; }
 
@@ -129,6 +163,12 @@ class ContactModel {
   double reform_value;
   double reform_cdf_lo, reform_cdf_hi;    // R truncated to |r| < max threshold
   double reform_top;                      // max threshold (effective for unbounded P_c)
+  ThermalModel thermal;
+  bool thermal_on;
+
+  // a new life of a contact with temperature, aging or delays: budget, age 0
+  void start_life(double *st, uint64_t tag, uint64_t event, uint32_t off) const;
+  void check_finite(const double *st, uint64_t tag, double m, bool waiting) const;
 
   double draw_reform(uint64_t tag, uint64_t event, uint32_t stream) const;
   // new threshold (and stiffness) after event `event`; returns the re-forming stretch r

@@ -64,6 +64,8 @@ enum Stream : uint32_t {
   STREAM_THRESHOLD = 0,
   STREAM_REFORM = 1,
   STREAM_STIFFNESS = 2,
+  STREAM_BUDGET = 3,    // the hazard a contact life can take (thermal breaking)
+  STREAM_DELAY = 4,     // the delay before a broken contact re-forms
   STREAM_REENTRY = 8
 };
 

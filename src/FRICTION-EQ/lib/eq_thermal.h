@@ -36,7 +36,11 @@
 #ifndef FEQ_THERMAL_H
 #define FEQ_THERMAL_H
 
+#include "eq_distribution.h"
+
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace feq {
 
@@ -104,6 +108,31 @@ class ThermalModel {
  private:
   ThermalSpec spec;
 };
+
+/* ----------------------------------------------------------------------
+   the keywords shared by fix eq/contacts and eq/me:
+     thermal T eps_a omega     theta = k_B T / eps_a, attempt frequency
+     barrier p q               exponents of the barrier scale and prefactor (0 0)
+     aging none | log beta tau_a | exp beta tau_a
+     delay none | fixed tau | exp tau
+     rest t_w                  age of the contacts at the start
+------------------------------------------------------------------------- */
+
+struct ThermalKeywords {
+  double temperature = 0.0, eps_a = 1.0;
+  ThermalSpec spec;    // theta set by finish()
+  // theta = boltz T / eps_a; xc: the mean threshold
+  ThermalSpec finish(double boltz, double xc) const;
+  // the settings in words (for the log), "" when none is on
+  std::string text() const;
+};
+
+// kw = args[iarg - 1]: false when it is not one of the keywords above;
+// else its values are parsed (iarg moves on; SpecError names the keyword)
+bool parse_thermal_keyword(const std::string &kw, const std::vector<std::string> &args,
+                           size_t &iarg, const NumberParser &number, ThermalKeywords &t);
+
+constexpr const char *THERMAL_KEYWORDS = "thermal, barrier, aging, delay, rest";
 
 }    // namespace feq
 
