@@ -221,7 +221,9 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
     if (st[CS_THRESHOLD] < 0.0) return res;    // detached for good
     const double h = (1.0 - f) * dt;
     if (st[CT_WAIT] > 0.0) {    // waiting: re-forms when the delay is over
-      if (st[CT_WAIT] > h) {
+      // (with crossing step at the end of the first step by which it is
+      // over, a delay of a whole number of steps not lengthened by rounding)
+      if (st[CT_WAIT] > (exact ? h : h + 1e-9 * dt)) {
         st[CT_WAIT] -= h;
         st[CS_STRETCH] = 0.0;
         return res;
