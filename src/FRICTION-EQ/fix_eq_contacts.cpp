@@ -157,7 +157,7 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   energy_global_flag = 1;
   respa_level_support = 1;
   ilevel_respa = 0;
-  peratom_setup(model->columns(), model->columns());
+  peratom_setup(model->columns(), model->outputs());
 
   // relaxed contacts at the current positions (or stretched by R), with
   // their stretches as every evaluation at these positions finds them (x -
@@ -593,6 +593,8 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks
     ncount += 1.0;
     const uint64_t id = static_cast<uint64_t>(tag[i]);
     if (st[CS_THRESHOLD] == 0.0) model->form(st, id, unwrap(i));
+    // a new run (dt = 0 in its set-up) may come with other parameters
+    if (dt == 0.0) ContactModel::clear_cache(st);
     const double xu = unwrap(i);
     if (st[CS_THRESHOLD] > 0.0) {
       const double m = unwrap.stretch(xu - st[CS_ANCHOR]);

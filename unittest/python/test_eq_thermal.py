@@ -26,7 +26,7 @@ import eqtools
 from eqtools import thermal as ref
 
 ROOT = Path(__file__).resolve().parents[2]
-INPUT = ROOT / "unittest" / "python" / "inputs" / "in.thermal"
+INPUT = ROOT / "examples" / "eq-thermal" / "in.eq-thermal"
 STATE = ROOT / "unittest" / "python" / "inputs" / "in.contacts-state"
 ZMAX = 5.0
 

@@ -122,6 +122,8 @@ void ContactModel::start_life(double *st, uint64_t tag, uint64_t event, uint32_t
   st[CT_AGE] = 0.0;
   st[CT_WAIT] = 0.0;
   st[CT_PENDING] = 0.0;
+  st[CT_RATE] = 0.0;
+  clear_cache(st);
 }
 
 void ContactModel::depart(double *st)
@@ -247,7 +249,11 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
       g = d_a < 0.0 ? d_a / (d_a - d_b) : 0.0;
       broke = true;
     }
-    const double dH = thermal.hazard(s_a, s_a + (s_b - s_a) * g, a_a, h * g, xs0);
+    // the rate at the start: cached from the end of the last step if the
+    // contact has not changed since (whole step, attached at its start)
+    const double nu_a = (f == 0.0 && st[CT_RATE_AT] == s_a) ? st[CT_RATE] : std::nan("");
+    double nu_b = 0.0;
+    const double dH = thermal.hazard(s_a, s_a + (s_b - s_a) * g, a_a, h * g, xs0, nu_a, &nu_b);
     if (dH > 0.0 && dH >= st[CT_BUDGET]) {    // thermal break, first
       g *= st[CT_BUDGET] / dH;
       broke = true;
@@ -256,6 +262,10 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
       st[CT_BUDGET] -= dH;
       st[CT_AGE] = a_a + h;
       st[CS_STRETCH] = s_b;
+      if (h > 0.0) {
+        st[CT_RATE] = nu_b;
+        st[CT_RATE_AT] = s_b;
+      }
       res.stretch = s_b;
       res.attached = true;
       return res;

@@ -84,6 +84,12 @@ enum ThermalColumn : int {
   CT_AGE,                 // time since the contact formed
   CT_WAIT,                // > 0: broken, re-forms after this time (stretch CS_STRETCH is 0)
   CT_PENDING,             // the stretch it re-forms with, while it waits
+  CT_OUTPUTS,             // (the columns above are the per-atom output)
+  // cache: the breaking rate at stretch CT_RATE_AT (its age and threshold
+  // as stored), written by advance() at the end of a step; valid while
+  // CS_STRETCH == CT_RATE_AT, invalidated (RATE_UNKNOWN) by form() and clear_cache()
+  CT_RATE = CT_OUTPUTS,
+  CT_RATE_AT,
   CT_NCOL
 };
 
@@ -111,6 +117,12 @@ class ContactModel {
 
   // doubles per contact row: CS_NCOL, or CT_NCOL with temperature, aging or delays
   int columns() const { return thermal_on ? static_cast<int>(CT_NCOL) : static_cast<int>(CS_NCOL); }
+  // the columns that are per-atom output
+  int outputs() const { return thermal_on ? static_cast<int>(CT_OUTPUTS) : static_cast<int>(CS_NCOL); }
+  // forget the cached rate (parameters may have changed: a new run)
+  static void clear_cache(double *st) { st[CT_RATE_AT] = RATE_UNKNOWN; }
+  // no stretch is this large (thresholds are below 1e300)
+  static constexpr double RATE_UNKNOWN = 1.0e308;
   bool thermal_active() const { return thermal_on; }
   const ThermalModel &thermal_model() const { return thermal; }
 

@@ -70,7 +70,11 @@ struct ThermalSpec {
 
 class ThermalModel {
  public:
-  explicit ThermalModel(const ThermalSpec &s) : spec(s) {}
+  explicit ThermalModel(const ThermalSpec &s) :
+      spec(s), inv_theta(s.theta > 0.0 ? 1.0 / s.theta : 0.0),
+      inv_xc(s.xc > 0.0 ? 1.0 / s.xc : 1.0)
+  {
+  }
   const ThermalSpec &params() const { return spec; }
 
   // threshold factor A(t) at age t >= 0
@@ -87,26 +91,45 @@ class ThermalModel {
   double rate(double x, double xs) const
   {
     if (!(spec.theta > 0.0)) return 0.0;
-    const double u = 1.0 - std::fabs(x) / xs;
-    if (!(u > 0.0)) return spec.q > 0.0 ? 0.0 : spec.omega;
-    const double scale = spec.p == 0.0 ? 1.0 : std::pow(xs / spec.xc, spec.p);
-    const double pre = spec.q == 0.0 ? spec.omega : spec.omega * std::pow(u, spec.q);
-    return pre * std::exp(-scale * u * std::sqrt(u) / spec.theta);
+    return rate_u(1.0 - std::fabs(x) / xs, xs);
+  }
+
+  // the rate at stretch x and age a of a contact with threshold x_s0 A(a)
+  // (the value the hazard uses at either end of a step)
+  double rate_at(double x, double a, double xs0) const
+  {
+    if (!(spec.theta > 0.0)) return 0.0;
+    if (spec.aging == AgingLaw::NONE) return rate_u(1.0 - std::fabs(x) * (1.0 / xs0), xs0);
+    return rate(x, xs0 * factor(a));
   }
 
   // hazard accumulated over a time h while the stretch goes linearly from
-  // x0 to x1 and the age from a0 to a0 + h (Simpson's rule)
-  double hazard(double x0, double x1, double a0, double h, double xs0) const
+  // x0 to x1 and the age from a0 to a0 + h (Simpson's rule).  nu0: the
+  // rate at the start, rate_at(x0, a0, xs0), when known (else NaN); nu1
+  // (if not null) receives rate_at(x1, a0 + h, xs0)
+  double hazard(double x0, double x1, double a0, double h, double xs0,
+                double nu0 = std::nan(""), double *nu1 = nullptr) const
   {
     if (!(spec.theta > 0.0) || !(h > 0.0)) return 0.0;
-    const double xm = 0.5 * (x0 + x1);
-    return h / 6.0 *
-        (rate(x0, xs0 * factor(a0)) + 4.0 * rate(xm, xs0 * factor(a0 + 0.5 * h)) +
-         rate(x1, xs0 * factor(a0 + h)));
+    if (std::isnan(nu0)) nu0 = rate_at(x0, a0, xs0);
+    const double nm = rate_at(0.5 * (x0 + x1), a0 + 0.5 * h, xs0);
+    const double n1 = rate_at(x1, a0 + h, xs0);
+    if (nu1) *nu1 = n1;
+    return h / 6.0 * (nu0 + 4.0 * nm + n1);
   }
 
  private:
   ThermalSpec spec;
+  double inv_theta, inv_xc;
+
+  // the rate at u = 1 - |x|/xs (theta > 0)
+  double rate_u(double u, double xs) const
+  {
+    if (!(u > 0.0)) return spec.q > 0.0 ? 0.0 : spec.omega;
+    const double scale = spec.p == 0.0 ? 1.0 : std::pow(xs * inv_xc, spec.p);
+    const double pre = spec.q == 0.0 ? spec.omega : spec.omega * std::pow(u, spec.q);
+    return pre * std::exp(-scale * u * std::sqrt(u) * inv_theta);
+  }
 };
 
 /* ----------------------------------------------------------------------
