@@ -972,6 +972,13 @@ void FixEQContacts::check_restored(int i)
   if (th > 0.0) check_reach(i, idir, st[CS_ANCHOR], "anchor");
 }
 
+std::string FixEQContacts::layout_hint() const
+{
+  return fmt::format("the keywords {} add {} values per contact; give one of them in both the run "
+                     "that wrote the file and this one, or in neither",
+                     THERMAL_KEYWORDS, CT_NCOL - CS_NCOL);
+}
+
 /* ---------------------------------------------------------------------- */
 
 double FixEQContacts::memory_usage()

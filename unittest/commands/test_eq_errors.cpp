@@ -97,6 +97,47 @@ TEST_F(EQContactsErrors, Arguments)
                command("fix c moving eq/contacts 1.0 5 threshold uniform 0.75 1.25"););
 }
 
+// temperature, aging and delays: values, and what they cannot go with
+TEST_F(EQContactsErrors, TemperatureAgingDelay)
+{
+  const std::string base = "1.0 5 threshold uniform 0.75 1.25 ";
+  TEST_FAILURE(".*ERROR: Fix eq/contacts thermal eps_a: must be > 0 \\(got 0\\).*",
+               fix(base + "thermal 1.0 0 1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts thermal T: must be >= 0 \\(got -1\\).*",
+               fix(base + "thermal -1 1.0 1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts thermal omega: missing value.*",
+               fix(base + "thermal 1.0 1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts barrier q: expected a number, got 'x'.*",
+               fix(base + "barrier 2 x"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts aging: unknown value 'power'; allowed: none, log, exp.*",
+               fix(base + "aging power 0.1 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts aging tau_a: must be > 0 \\(got 0\\).*",
+               fix(base + "aging log 0.1 0"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts delay tau: must be >= 0 \\(got -2\\).*",
+               fix(base + "delay exp -2"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts rest t_w: must be >= 0 \\(got -1\\).*",
+               fix(base + "rest -1"););
+  // time must pass: not with a driver that moves from break to break
+  HIDE_OUTPUT([&] {
+    fix(base + "thermal 0.1 1.0 1.0");
+    command("fix q all eq/quasistatic c max 0.01");
+  });
+  TEST_FAILURE(".*ERROR: Fix c eq/contacts: the keywords thermal, barrier, aging, delay, rest need "
+               "time, and fix q moves the slider from break to break without it.*",
+               command("run 0 post no"););
+  HIDE_OUTPUT([&] {
+    command("unfix q");
+    command("unfix c");
+    fix(base + "aging log 0.1 1.0");
+    command("comm_modify cutoff 3.5");
+    command("pair_style eq/elastic 3.0");
+    command("pair_coeff 1 1 0.06 3.0");
+  });
+  TEST_FAILURE(".*ERROR: Fix c eq/contacts: the keywords thermal, barrier, aging, delay, rest are "
+               "not supported with pair style eq/elastic yet.*",
+               command("run 0 post no"););
+}
+
 TEST_F(EQContactsErrors, Threshold)
 {
   TEST_FAILURE(".*ERROR: Fix eq/contacts threshold uniform: need 0 <= lo < hi \\(got lo = 1.25, "

@@ -245,6 +245,34 @@ TEST_F(EQState, ContactsRestartWithOtherArguments)
   std::remove("eq_state_c.restart");
 }
 
+// the thermal keywords add values per contact: a restart file of the
+// other layout names them; their values themselves may change
+TEST_F(EQState, ContactsRestartAcrossTheThermalLayout)
+{
+  HIDE_OUTPUT([&] {
+    command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25 thermal 0.1 1.0 1.0");
+    command("fix m all move linear 0.1 0.0 0.0 units box");
+    command("run 20 post no");
+    command("write_restart eq_state_t.restart");
+    command("clear");
+    command("read_restart eq_state_t.restart");
+  });
+  TEST_FAILURE(".*ERROR.*: Fix c eq/contacts: the restart file holds 13 values per atom "
+               "for this fix, it expects 7 .*the keywords thermal, barrier, aging, delay, rest "
+               "add 6 values per contact.*",
+               command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25"););
+  HIDE_OUTPUT([&] {
+    command("clear");
+    command("read_restart eq_state_t.restart");
+    command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25 thermal 0.3 1.0 1.0 "
+            "aging exp 0.1 2.0 delay fixed 0.5");
+    command("fix m all move linear 0.1 0.0 0.0 units box");
+    command("run 20 post no");
+  });
+  EXPECT_GT(lmp->modify->fix[lmp->modify->find_fix("c")]->compute_vector(2), 0.0);
+  std::remove("eq_state_t.restart");
+}
+
 TEST_F(EQState, BlocksRestartWithOtherArguments)
 {
   HIDE_OUTPUT([&] {
