@@ -122,7 +122,7 @@ void ContactModel::start_life(double *st, uint64_t tag, uint64_t event, uint32_t
   st[CT_AGE] = 0.0;
   st[CT_WAIT] = 0.0;
   st[CT_PENDING] = 0.0;
-  st[CT_RATE] = 0.0;
+  st[CT_RATE] = st[CT_RATE_LOG] = st[CT_RATE_SMOOTH] = 0.0;
   clear_cache(st);
 }
 
@@ -243,17 +243,29 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
     const double a_a = st[CT_AGE], xs0 = st[CS_THRESHOLD];
     double g = 1.0;    // fraction of the piece at which it breaks
     bool broke = false;
-    const double d_b = std::fabs(s_b) - xs0 * thermal.factor(a_a + h);
-    if (!(d_b < 0.0)) {    // crosses its threshold within the piece
-      const double d_a = std::fabs(s_a) - xs0 * thermal.factor(a_a);
-      g = d_a < 0.0 ? d_a / (d_a - d_b) : 0.0;
-      broke = true;
+    // the threshold at the end only where the lower bound does not decide
+    if (!(std::fabs(s_b) < st[CT_XS_LOW])) {
+      const double xs_b = xs0 * thermal.factor(a_a + h);
+      const double d_b = std::fabs(s_b) - xs_b;
+      if (!(d_b < 0.0)) {    // crosses its threshold within the piece
+        const double d_a = std::fabs(s_a) - xs0 * thermal.factor(a_a);
+        g = d_a < 0.0 ? d_a / (d_a - d_b) : 0.0;
+        broke = true;
+      } else {
+        st[CT_XS_LOW] = xs_b;
+      }
     }
     // the rate at the start: cached from the end of the last step if the
     // contact has not changed since (whole step, attached at its start)
-    const double nu_a = (f == 0.0 && st[CT_RATE_AT] == s_a) ? st[CT_RATE] : std::nan("");
-    double nu_b = 0.0;
-    const double dH = thermal.hazard(s_a, s_a + (s_b - s_a) * g, a_a, h * g, xs0, nu_a, &nu_b);
+    RatePoint cached, end;
+    const bool have = f == 0.0 && st[CT_RATE_AT] == s_a;
+    if (have) {
+      cached.nu = st[CT_RATE];
+      cached.psi = st[CT_RATE_LOG];
+      cached.smooth = st[CT_RATE_SMOOTH] != 0.0;
+    }
+    const double dH = thermal.hazard(s_a, s_a + (s_b - s_a) * g, a_a, h * g, xs0,
+                                     have ? &cached : nullptr, &end);
     if (dH > 0.0 && dH >= st[CT_BUDGET]) {    // thermal break, first
       g *= st[CT_BUDGET] / dH;
       broke = true;
@@ -262,8 +274,10 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
       st[CT_BUDGET] -= dH;
       st[CT_AGE] = a_a + h;
       st[CS_STRETCH] = s_b;
-      if (h > 0.0) {
-        st[CT_RATE] = nu_b;
+      if (h > 0.0 && thermal.params().thermal()) {
+        st[CT_RATE] = end.nu;
+        st[CT_RATE_LOG] = end.psi;
+        st[CT_RATE_SMOOTH] = end.smooth ? 1.0 : 0.0;
         st[CT_RATE_AT] = s_b;
       }
       res.stretch = s_b;

@@ -85,11 +85,18 @@ enum ThermalColumn : int {
   CT_WAIT,                // > 0: broken, re-forms after this time (stretch CS_STRETCH is 0)
   CT_PENDING,             // the stretch it re-forms with, while it waits
   CT_OUTPUTS,             // (the columns above are the per-atom output)
-  // cache: the breaking rate at stretch CT_RATE_AT (its age and threshold
-  // as stored), written by advance() at the end of a step; valid while
-  // CS_STRETCH == CT_RATE_AT, invalidated (RATE_UNKNOWN) by form() and clear_cache()
+  // caches, written by advance():
+  // the breaking rate (nu, ln nu, whether ln nu holds) at stretch
+  // CT_RATE_AT, its age and threshold as stored, from the end of the last
+  // step: valid while CS_STRETCH == CT_RATE_AT; invalidated
+  // (RATE_UNKNOWN) by form() and clear_cache();
   CT_RATE = CT_OUTPUTS,
+  CT_RATE_LOG,
+  CT_RATE_SMOOTH,
   CT_RATE_AT,
+  // a lower bound of the current threshold x_s0 A(age) (A >= 1 and
+  // grows with age): x_s0 at formation and after clear_cache()
+  CT_XS_LOW,
   CT_NCOL
 };
 
@@ -120,7 +127,11 @@ class ContactModel {
   // the columns that are per-atom output
   int outputs() const { return thermal_on ? static_cast<int>(CT_OUTPUTS) : static_cast<int>(CS_NCOL); }
   // forget the cached rate (parameters may have changed: a new run)
-  static void clear_cache(double *st) { st[CT_RATE_AT] = RATE_UNKNOWN; }
+  static void clear_cache(double *st)
+  {
+    st[CT_RATE_AT] = RATE_UNKNOWN;
+    st[CT_XS_LOW] = st[CS_THRESHOLD];
+  }
   // no stretch is this large (thresholds are below 1e300)
   static constexpr double RATE_UNKNOWN = 1.0e308;
   bool thermal_active() const { return thermal_on; }
