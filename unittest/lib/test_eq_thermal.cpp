@@ -249,3 +249,40 @@ TEST(Thermal, KeywordsNameWhatIsWrong)
   EXPECT_NE(message({"rest"}).find("rest t_w: missing value"), std::string::npos);
   EXPECT_NE(message({"barrier", "2"}).find("barrier q: missing value"), std::string::npos);
 }
+
+// the hazard of a step (the midpoint rate from the end rates and a series)
+// equals Simpson's rule with three rates evaluated directly, to rounding,
+// with and without aging, barrier exponents, cached start rates (the
+// tolerance as for the rates below)
+TEST(Thermal, HazardIsSimpsonsRule)
+{
+  for (const double p : {0.0, 2.0})
+    for (const double q : {0.0, 0.25})
+      for (const AgingLaw law : {AgingLaw::NONE, AgingLaw::LOG, AgingLaw::EXP}) {
+        ThermalSpec t = thermal(0.03);
+        t.p = p;
+        t.q = q;
+        t.aging = law;
+        t.beta = 0.1;
+        t.tau_a = 2.0;
+        t.xc = 1.1;
+        const ThermalModel m(t);
+        for (const double h : {1e-3, 0.5, 40.0})
+          for (const double x0 : {0.1, 0.6, -0.8}) {
+            const double x1 = x0 + (x0 > 0 ? 0.002 : -0.002) * h, a0 = 3.0, xs0 = 1.05;
+            auto nu = [&](double x, double a) { return m.rate(x, xs0 * m.factor(a)); };
+            const double simpson =
+                h / 6.0 * (nu(x0, a0) + 4.0 * nu(0.5 * (x0 + x1), a0 + 0.5 * h) + nu(x1, a0 + h));
+            RatePoint end;
+            const double direct = m.hazard(x0, x1, a0, h, xs0, nullptr, &end);
+            EXPECT_NEAR(direct, simpson, 1e-13 * simpson) << p << q << h << x0;
+            // rounding of the exponent psi (|psi| < 50 here) is amplified by
+            // |psi|: a relative error of about |psi| 4 eps < 5e-14
+            EXPECT_NEAR(end.nu, nu(x1, a0 + h), 1e-13 * end.nu);
+            // the start from a cached point gives the same
+            const RatePoint start = m.point(x0, xs0 * m.factor(a0));
+            EXPECT_EQ(m.hazard(x0, x1, a0, h, xs0, &start, nullptr), direct);
+            EXPECT_GT(simpson, 0.0);
+          }
+      }
+}
