@@ -498,8 +498,9 @@ void check_thermal_job(MEJob &job, Richardson richardson)
   s.v = job.velocity;
   s.reform = job.reform.dist != nullptr;
   s.r0 = s.reform ? job.reform.dist->mean() : 0.0;
-  const double h = job.richardson ? 0.5 * job.opt.dx : job.opt.dx;
-  const double work = (job.opt.Xmax / h) * thermal_kernel_cells(s, h) * (job.richardson ? 1.25 : 1.0);
+  const double h = job.richardson ? 0.5 * job.opt.dx : job.opt.dx, cells = job.opt.Xmax / h;
+  const double work =
+      cells * std::min(cells, thermal_kernel_cells(s, h)) * (job.richardson ? 1.25 : 1.0);
   if (work > THERMAL_MAX_WORK)
     throw SpecError("dx: the renewal solution would take ~" +
                     fmtg(std::round(work * THERMAL_SECONDS_PER_WORK)) + " s (" + fmtg(work) +

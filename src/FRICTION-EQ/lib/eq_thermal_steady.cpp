@@ -41,10 +41,17 @@ const double H_CUT = 60.0;
 // y (over the thresholds), the moments of one life per unit length, and
 // the moments averaged over the thresholds
 const double TOL_H = 1e-13;
-const double TOL_S = 1e-13;
+const double TOL_S = 1e-12;
 const double TOL_LIFE = 1e-13;
 const double TOL_STEADY = 1e-12;
-const int MAX_INTERVALS = 400;    // per adaptive quadrature
+const size_t MAX_INTERVALS = 400;    // per adaptive quadrature (beyond the initial ones)
+// the survival at y leaves out the thresholds where h P(x_s0 > x) is
+// negligible, looked for on this many steps
+const int CUT_STEPS = 32;
+// a kink of S whose jump of slope is below this (relative) is smoothed
+const double KINK_NEGLIGIBLE = 1e-14;
+// the most a panel of a life may add to the hazard H
+const double DH_PANEL = 2.0;
 
 /* ---------------------------------------------------------------------- */
 
@@ -159,9 +166,10 @@ template <size_t K, class F> Interval<K> gk15(const F &f, double a, double b)
 
 // Globally adaptive Gauss-Kronrod over the pieces [pts_i, pts_i+1]:
 // splits the interval of largest error until the summed error is below
-// tol(total) or MAX_INTERVALS are used; stop(total, err) may end it early
+// tol(total) (infinite to stop early) or max_intervals are used
 template <size_t K, class F, class Tol>
-Vec<K> adaptive(const F &f, const std::vector<double> &pts, const Tol &tol)
+Vec<K> adaptive(const F &f, const std::vector<double> &pts, const Tol &tol,
+                size_t max_intervals = MAX_INTERVALS)
 {
   std::vector<Interval<K>> iv;
   for (size_t i = 0; i + 1 < pts.size(); ++i)
@@ -176,7 +184,7 @@ Vec<K> adaptive(const F &f, const std::vector<double> &pts, const Tol &tol)
       err += iv[i].err;
       if (iv[i].err > iv[worst].err) worst = i;
     }
-    if (iv.empty() || err <= tol(total) || iv.size() >= static_cast<size_t>(MAX_INTERVALS))
+    if (iv.empty() || err <= tol(total) || iv.size() >= max_intervals)
       return total;
     const Interval<K> w = iv[worst];
     const double m = 0.5 * (w.a + w.b);
@@ -255,11 +263,17 @@ double ContactLife::threshold_at(double y) const
   return std::fabs(r0 + y) / factor(y);
 }
 
+// S' jumps where s(y) crosses a kink b of P_c, by the jump of P_c times
+// the survival e^-H of the threshold b up to its break point: at T > 0
+// only the kinks where that survival is not negligible are kept
 std::vector<double> ContactLife::kinks() const
 {
   std::vector<double> k{0.0};
   if (r0 < 0.0) k.push_back(-r0);
-  for (double b : pieces) k.push_back(breakpoint(b));
+  for (double b : pieces) {
+    const double yb = breakpoint(b);
+    if (b == pieces.back() || !(std::exp(-exponent(yb, b)) < KINK_NEGLIGIBLE)) k.push_back(yb);
+  }
   std::sort(k.begin(), k.end());
   k.erase(std::unique(k.begin(), k.end()), k.end());
   return k;
@@ -289,13 +303,31 @@ double ContactLife::survival(double y) const
   if (!(lo < pieces.back())) return 0.0;
   const double alive = P.sf(lo) - P.sf(pieces.back());
   if (!(model.params().theta > 0.0)) return alive / norm;
-  // minus the thresholds above s(y) that broke by activation before y
-  std::vector<double> pts{lo};
+  // minus the thresholds above s(y) that broke by activation before y:
+  // h = 1 - e^-H(y; x_s0) falls as x_s0 grows (u grows), smoothly (the
+  // kinks of P_c do not enter it): a Chebyshev interpolant on [lo, cut],
+  // beyond which h P(x_s0 > x) is negligible, then int P_c h over the
+  // pieces of P_c
+  auto h = [&](double xs0) { return -std::expm1(-exponent(y, xs0)); };
+  const double top = pieces.back();
+  double cut = top;
+  for (int k = 1; k < CUT_STEPS; ++k) {
+    const double x = lo + (top - lo) * k / CUT_STEPS;
+    if (h(x) * P.sf(x) < 1e-3 * TOL_S) {
+      cut = x;
+      break;
+    }
+  }
+  PiecewiseChebyshev hc;
+  hc.build(h, lo, cut, TOL_S, 1e-12 * std::max(1.0, top));
+  std::vector<double> pts = hc.starts();
   for (double b : pieces)
-    if (b > lo) pts.push_back(b);
-  auto f = [&](double xs0) { return Vec<1>{{-P.pdf(xs0) * std::expm1(-exponent(y, xs0))}}; };
+    if (b > lo && b < cut) pts.push_back(b);
+  pts.push_back(cut);
+  std::sort(pts.begin(), pts.end());
+  auto f = [&](double xs0) { return Vec<1>{{P.pdf(xs0) * hc(xs0)}}; };
   auto tol = [](const Vec<1> &) { return TOL_S; };
-  const double broken = adaptive<1>(f, pts, tol)[0];
+  const double broken = adaptive<1>(f, pts, tol, MAX_INTERVALS + pts.size())[0];
   return std::max(0.0, alive - broken) / norm;
 }
 
@@ -325,8 +357,10 @@ template <class Rate> Panel life_panel(const Rate &rate, double r0, double a, do
 
 }    // namespace
 
-// Marches along y in panels: a panel is accepted when its two halves
-// agree with it (moments and, weighted by what is left to survive, H)
+// Marches along y in panels: a panel is accepted when H grows by at most
+// DH_PANEL over it (so that its nodes see e^-H fall) and its two halves
+// agree with it: the moments, and H weighted by what is left to survive
+// (e^-H times the shorter of the rest of the life and v/nu, nu growing)
 void ContactLife::moments(double xs0, double &L, double &M) const
 {
   const double ys = breakpoint(xs0);
@@ -347,10 +381,13 @@ void ContactLife::moments(double xs0, double &L, double &M) const
     const Panel p1 = life_panel(nu, r0, a, m, H);
     const Panel p2 = life_panel(nu, r0, m, b, H + p1.dH);
     const double dH = p1.dH + p2.dH;
+    const double rest = std::min(ys - b, 1.0 / std::max(nu(b), 1e-300));
     const double err = std::fabs(one.L - p1.L - p2.L) + std::fabs(one.M - p1.M - p2.M) +
-        std::exp(-H - dH) * (ys - b) * (1.0 + ys) * std::fabs(one.dH - dH);
+        std::exp(-H - dH) * rest * (1.0 + ys) * std::fabs(one.dH - dH);
     const double allowed = TOL_LIFE * (b - a);
-    if (err <= allowed || b - a <= hmin) {
+    if (b - a > hmin && one.dH > DH_PANEL) {
+      h = 0.5 * (b - a);
+    } else if (err <= allowed || b - a <= hmin) {
       L += p1.L + p2.L;
       M += p1.M + p2.M;
       H += dH;
@@ -382,7 +419,7 @@ ThermalSteady thermal_steady_state(const ThermalSlider &s)
       return r;
     };
     auto tol = [](const Vec<2> &) { return TOL_STEADY; };
-    LM = adaptive<2>(f, pts, tol);
+    LM = adaptive<2>(f, pts, tol, MAX_INTERVALS + pts.size());
     LM[0] /= life.weight_norm();
     LM[1] /= life.weight_norm();
   }
@@ -422,75 +459,75 @@ std::vector<KineticPoint> kinetic_table(const ThermalSlider &s, double vlo, doub
 
 /* ---------------------------------------------------------------------- */
 
-SurvivalTable::SurvivalTable(const ContactLife &life_) :
-    life(life_), direct(!(life_.params().theta > 0.0)), yend(life_.ymax())
-{
-  const std::vector<double> k = life.kinks();
-  for (size_t i = 0; i + 1 < k.size(); ++i) {
-    if (direct) {
-      lo.push_back(k[i]);
-      hi.push_back(k[i + 1]);
-      continue;
-    }
-    build(k[i], k[i + 1], 0);
-    // S is monotone: nothing left to tabulate once it is negligible
-    if (values.back().front() < NEGLIGIBLE) {
-      yend = hi.back();
-      break;
-    }
-  }
-  if (lo.empty()) yend = 0.0;
-}
-
-// Chebyshev points of the second kind on [a, b]; split until the two
-// highest coefficients are below TOLERANCE
-void SurvivalTable::build(double a, double b, int depth)
+void PiecewiseChebyshev::build(const std::function<double(double)> &f, double a, double b,
+                               double tol, double min_width)
 {
   const int n = DEGREE;
-  std::vector<double> f(n + 1);
-  for (int k = 0; k <= n; ++k)
-    f[k] = life.survival(0.5 * (a + b) + 0.5 * (b - a) * std::cos(PI * k / n));
+  std::vector<double> v(n + 1);
+  for (int k = 0; k <= n; ++k) v[k] = f(0.5 * (a + b) + 0.5 * (b - a) * std::cos(PI * k / n));
   double tail = 0.0;
   for (int j = n - 1; j <= n; ++j) {
     double c = 0.0;
-    for (int k = 0; k <= n; ++k) c += (k == 0 || k == n ? 0.5 : 1.0) * f[k] * std::cos(PI * j * k / n);
-    c *= (j == n ? 1.0 : 2.0) / n;
-    tail = std::max(tail, std::fabs(c));
+    for (int k = 0; k <= n; ++k) c += (k == 0 || k == n ? 0.5 : 1.0) * v[k] * std::cos(PI * j * k / n);
+    tail = std::max(tail, std::fabs(c * (j == n ? 1.0 : 2.0) / n));
   }
-  if (tail > TOLERANCE && depth < 40 && b - a > 1e-12 * std::max(1.0, b)) {
+  if (tail > tol && b - a > min_width) {
     const double m = 0.5 * (a + b);
-    build(a, m, depth + 1);
-    build(m, b, depth + 1);
+    build(f, a, m, tol, min_width);
+    build(f, m, b, tol, min_width);
     return;
   }
   lo.push_back(a);
   hi.push_back(b);
-  values.push_back(f);
+  values.push_back(v);
 }
 
-// barycentric interpolation on the Chebyshev points of piece i
-double SurvivalTable::interpolate(size_t i, double y) const
+double PiecewiseChebyshev::interpolate(size_t i, double x) const
 {
   const int n = DEGREE;
   const double a = lo[i], b = hi[i];
   double num = 0.0, den = 0.0;
   for (int k = 0; k <= n; ++k) {
-    const double yk = 0.5 * (a + b) + 0.5 * (b - a) * std::cos(PI * k / n);
-    if (y == yk) return values[i][k];
-    const double w = (k % 2 ? -1.0 : 1.0) * (k == 0 || k == n ? 0.5 : 1.0) / (y - yk);
+    const double xk = 0.5 * (a + b) + 0.5 * (b - a) * std::cos(PI * k / n);
+    if (x == xk) return values[i][k];
+    const double w = (k % 2 ? -1.0 : 1.0) * (k == 0 || k == n ? 0.5 : 1.0) / (x - xk);
     num += w * values[i][k];
     den += w;
   }
   return num / den;
 }
 
+double PiecewiseChebyshev::operator()(double x) const
+{
+  const size_t i = std::upper_bound(lo.begin(), lo.end(), x) - lo.begin();
+  return interpolate(i > 0 ? i - 1 : 0, x);
+}
+
+SurvivalTable::SurvivalTable(const ContactLife &life_) :
+    life(life_), direct(!(life_.params().theta > 0.0)), yend(life_.ymax())
+{
+  const std::vector<double> k = life.kinks();
+  if (direct) {
+    breaks.assign(k.begin(), k.end() - 1);
+    return;
+  }
+  auto S = [&](double y) { return life.survival(y); };
+  for (size_t i = 0; i + 1 < k.size(); ++i) {
+    cheb.build(S, k[i], k[i + 1], TOLERANCE, 1e-12 * std::max(1.0, k.back()));
+    // S is monotone: nothing left to tabulate once it is negligible
+    if (cheb.last_value() < NEGLIGIBLE) {
+      yend = cheb.end();
+      break;
+    }
+  }
+  breaks = cheb.starts();
+}
+
 double SurvivalTable::operator()(double y) const
 {
   if (!(y > 0.0)) return 1.0;
   if (!(y < yend)) return 0.0;
-  if (direct) return life.survival(y);
-  const size_t i = std::upper_bound(lo.begin(), lo.end(), y) - lo.begin() - 1;
-  return interpolate(i, y);
+  return direct ? life.survival(y) : cheb(y);
 }
 
 void SurvivalTable::cell_moments(double a, double b, double r0, double m[4]) const
@@ -501,9 +538,9 @@ void SurvivalTable::cell_moments(double a, double b, double r0, double m[4]) con
   if (!(b > a)) return;
   // split at the pieces' ends inside [a, b]
   std::vector<double> pts{a};
-  for (size_t i = std::upper_bound(lo.begin(), lo.end(), a) - lo.begin(); i < lo.size() && lo[i] < b;
-       ++i)
-    pts.push_back(lo[i]);
+  for (size_t i = std::upper_bound(breaks.begin(), breaks.end(), a) - breaks.begin();
+       i < breaks.size() && breaks[i] < b; ++i)
+    pts.push_back(breaks[i]);
   pts.push_back(b);
   const GaussRule &g = gauss12();
   for (size_t s = 0; s + 1 < pts.size(); ++s) {

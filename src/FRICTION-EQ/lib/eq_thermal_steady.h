@@ -135,28 +135,48 @@ struct KineticPoint {
 // n velocities log-spaced on [vlo, vhi] (n = 1: vlo)
 std::vector<KineticPoint> kinetic_table(const ThermalSlider &s, double vlo, double vhi, int n);
 
+// A piecewise Chebyshev interpolant (degree 16, points of the second
+// kind, barycentric evaluation) of a function on contiguous pieces.
+class PiecewiseChebyshev {
+ public:
+  static constexpr int DEGREE = 16;
+  // appends the pieces of f on [a, b] (after those already there): halves
+  // a piece until its two highest coefficients are below tol or it is
+  // narrower than min_width
+  void build(const std::function<double(double)> &f, double a, double b, double tol,
+             double min_width);
+  double operator()(double x) const;    // x within the pieces
+  bool empty() const { return lo.empty(); }
+  const std::vector<double> &starts() const { return lo; }
+  double end() const { return hi.empty() ? 0.0 : hi.back(); }
+  double last_value() const { return values.back()[0]; }    // f at end()
+
+ private:
+  std::vector<double> lo, hi;                 // pieces [lo, hi]
+  std::vector<std::vector<double>> values;    // f at their Chebyshev points
+  double interpolate(size_t piece, double x) const;
+};
+
 // The survival S(y) of a ContactLife as piecewise Chebyshev interpolants
-// on [0, ymax] (cut where S < 1e-30; S is monotone).
+// on [0, ymax] (cut where S < NEGLIGIBLE; S is monotone); at T = 0 S
+// itself (cheap and exact).
 class SurvivalTable {
  public:
   explicit SurvivalTable(const ContactLife &life);
-  static constexpr int DEGREE = 16;
-  static constexpr double TOLERANCE = 1e-12;    // on the Chebyshev coefficients
+  static constexpr double TOLERANCE = 1e-11;    // on the Chebyshev coefficients
   static constexpr double NEGLIGIBLE = 1e-25;   // S below: the table ends
   double operator()(double y) const;
-  double end() const { return yend; }    // S = 0 (below 1e-30) beyond
+  double end() const { return yend; }    // S = 0 (below NEGLIGIBLE) beyond
   // (1/(b-a)) int_a^b (r0 + y)^p S(y) dy for p = 0..3
   void cell_moments(double a, double b, double r0, double m[4]) const;
-  size_t pieces() const { return lo.size(); }
+  size_t pieces() const { return breaks.size(); }
 
  private:
-  ContactLife life;                           // S itself at T = 0 (exact, cheap)
-  bool direct;                                // T = 0: no interpolant
-  std::vector<double> lo, hi;                 // pieces [lo, hi], contiguous
-  std::vector<std::vector<double>> values;    // S at their Chebyshev points
+  ContactLife life;
+  bool direct;                   // T = 0: no interpolant
+  PiecewiseChebyshev cheb;
+  std::vector<double> breaks;    // starts of the smooth pieces of S
   double yend;
-  void build(double a, double b, int depth);
-  double interpolate(size_t piece, double y) const;
 };
 
 // F(X) etc. from the fresh start (see above) on X = 0, dx, ..., Xmax;
