@@ -23,6 +23,7 @@
 
 #include "comm.h"
 #include "error.h"
+#include "force.h"
 #include "input.h"
 #include "utils.h"
 #include "variable.h"
@@ -48,6 +49,9 @@ void EQMe::command(int narg, char **arg)
   feq::MEJob job;
   try {
     job = feq::parse_me_job(args, EQUtil::number_parser(lmp), EQUtil::file_loader(lmp));
+    // theta = k_B T / eps_a of the thermal keyword, in the units of the input
+    job.boltz = force->boltz;
+    if (job.thermal_on()) job.thermal_spec();    // throws when theta is not finite
   } catch (const feq::SpecError &e) {
     error->all(FLERR, "eq/me {}", e.what());
   }
@@ -82,8 +86,9 @@ void EQMe::command(int narg, char **arg)
   // results as internal variables; a result this job does not have (no
   // static peak within xmax, no steady state without re-forming) deletes
   // the variable of an earlier eq/me, so that no stale value is used
-  const char *names[] = {"kstar",         "kstar_X",     "static_peak",  "static_peak_X",
-                         "kinetic_force", "steady_rate", "force_at_xmax"};
+  const char *names[] = {"kstar",         "kstar_X",       "static_peak",      "static_peak_X",
+                         "kinetic_force", "steady_rate",   "force_at_xmax",    "kinetic_slope",
+                         "attached_fraction"};
   for (const char *n : names) {
     const std::string name = std::string("eq_me_") + n;
     const int ivar = input->variable->find(name.c_str());

@@ -43,6 +43,17 @@
      substrate FILE KEYWORD uc
                      the substrate shape phi(u) = F(u)/(N kc) on [0, uc] of a
                      rigid lambda_c block, as a table for fix eq/substrate
+   temperature, aging and delays (as fix eq/contacts; k_B = 1 here):
+     thermal T eps_a omega   thermally activated breaking, theta = T / eps_a
+     barrier p q             barrier (x_s/x_c)^p u^(3/2), prefactor u^q (0 0)
+     aging none | log beta tau_a | exp beta tau_a   threshold growth with age
+     delay none | fixed tau | exp tau               re-formation delay
+     rest t_w                age of the contacts at X = 0
+     velocity v              slider velocity (required with any of the above)
+     kinetic FILE vlo vhi n  table: v  F_k  dF_k/dlnv  attached_fraction  Gamma_s
+   With any of thermal (T > 0), aging, delay, rest the job is the renewal
+   solution at velocity v (force: the transient from X = 0; summary:
+   kinetic_force, kinetic_slope, static_peak, kstar, attached_fraction).
    See doc/src/eq_me.rst.
 ------------------------------------------------------------------------- */
 

@@ -21,8 +21,10 @@
 
 #include "eq_me_job.h"
 
+#include "eq_keywords.h"
 #include "eq_renewal_exact.h"
 #include "eq_substrate.h"
+#include "eq_thermal_steady.h"
 
 #include <algorithm>
 #include <chrono>
@@ -73,6 +75,10 @@ const double MAX_STEPS = 2e8;
 // (RenewalUniform::work(); measured 0.17-0.3 us each: ~30 s)
 const double EXACT_MAX_WORK = 1e8;
 const double EXACT_SECONDS_PER_WORK = 3e-7;
+// the renewal solution of the thermal terms: cells times kernel cells
+// (eq_thermal_steady.cpp; measured ~0.7 ns each: ~20 s)
+const double THERMAL_MAX_WORK = 3e10;
+const double THERMAL_SECONDS_PER_WORK = 7e-10;
 
 std::string format(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 std::string format(const char *fmt, ...)
@@ -97,7 +103,9 @@ bool is_keyword(const std::string &tok)
 {
   static const char *const kws[] = {"threshold", "reform",   "stiffness", "dir",      "xmax",
                                     "dx",        "start",    "crossing",  "richardson", "force",
-                                    "steady",    "snapshot", "summary",   "exact",    "substrate"};
+                                    "steady",    "snapshot", "summary",   "exact",    "substrate",
+                                    "thermal",   "barrier",  "aging",     "delay",    "rest",
+                                    "velocity",  "kinetic"};
   for (const char *k : kws)
     if (tok == k) return true;
   return false;
@@ -188,6 +196,7 @@ void check_me_outputs(const MEJob &job)
   if (!job.summary_file.empty()) files.emplace_back("summary", job.summary_file);
   if (!job.exact_file.empty()) files.emplace_back("exact", job.exact_file);
   if (!job.substrate_file.empty()) files.emplace_back("substrate", job.substrate_file);
+  if (!job.kinetic_file.empty()) files.emplace_back("kinetic", job.kinetic_file);
   for (const auto &f : files) {
     std::FILE *probe = std::fopen(f.second.c_str(), "r");
     const bool existed = probe != nullptr;
@@ -204,7 +213,8 @@ void check_me_outputs(const MEJob &job)
 const char *me_job_keywords()
 {
   return "threshold, reform, stiffness, dir, xmax, dx, start, crossing, richardson, force, steady, "
-         "snapshot, summary, exact, substrate";
+         "snapshot, summary, exact, substrate, thermal, barrier, aging, delay, rest, velocity, "
+         "kinetic";
 }
 
 namespace {
@@ -261,6 +271,23 @@ class JobArgs {
   DistributionSpec distribution(Role role, const FileLoader &load)
   {
     return parse_distribution(role, args, pos, number, load);
+  }
+
+  // the next token as one of words (its index)
+  int choice(const std::string &kw, const std::vector<std::string> &words)
+  {
+    return parse_choice(args, pos, kw, words);
+  }
+
+  // the next token as a finite number >= lo (> lo when strict); what
+  // names it in messages ("delay tau")
+  double at_least(const std::string &what, double lo, bool strict)
+  {
+    const double v = parse_finite(args, pos, what, number);
+    if (strict ? !(v > lo) : !(v >= lo))
+      throw SpecError(what + ": must be " + (strict ? "> " : ">= ") + fmtg(lo) + " (got " +
+                      args[pos - 1] + ")");
+    return v;
   }
 
  private:
@@ -331,6 +358,54 @@ bool read_output_keyword(JobArgs &in, const std::string &kw, MEJob &job)
   return true;
 }
 
+// reads the values of a keyword of the thermal terms (thermal, barrier,
+// aging, delay, rest, velocity, kinetic) into job; false when kw is none
+// of them.  The syntax and messages of fix eq/contacts.
+bool read_thermal_keyword(JobArgs &in, const std::string &kw, MEJob &job)
+{
+  ThermalSpec &t = job.thermal;
+  if (kw == "thermal") {
+    job.temperature = in.at_least("thermal T", 0.0, false);
+    job.eps_a = in.at_least("thermal eps_a", 0.0, true);
+    t.omega = in.at_least("thermal omega", 0.0, true);
+  } else if (kw == "barrier") {
+    t.p = in.at_least("barrier p", 0.0, false);
+    t.q = in.at_least("barrier q", 0.0, false);
+  } else if (kw == "aging") {
+    const int law = in.choice(kw, {"none", "log", "exp"});
+    t.aging = law == 0 ? AgingLaw::NONE : law == 1 ? AgingLaw::LOG : AgingLaw::EXP;
+    if (law != 0) {
+      t.beta = in.at_least("aging beta", 0.0, false);
+      t.tau_a = in.at_least("aging tau_a", 0.0, true);
+    }
+  } else if (kw == "delay") {
+    const int kind = in.choice(kw, {"none", "fixed", "exp"});
+    t.delay = kind == 0 ? DelayKind::NONE : kind == 1 ? DelayKind::FIXED : DelayKind::EXPONENTIAL;
+    t.tau = kind == 0 ? 0.0 : in.at_least("delay tau", 0.0, false);
+  } else if (kw == "rest") {
+    t.rest = in.at_least("rest t_w", 0.0, false);
+  } else if (kw == "velocity") {
+    job.velocity = in.at_least("velocity", 0.0, true);
+  } else if (kw == "kinetic") {
+    job.kinetic_file = in.file(kw);
+    job.kinetic_vlo = in.at_least("kinetic vlo", 0.0, true);
+    job.kinetic_vhi = in.at_least("kinetic vhi", 0.0, true);
+    const double n = in.at_least("kinetic n", 1.0, false);
+    if (n != std::floor(n) || n > 10000.0)
+      throw SpecError("kinetic n: must be a whole number of velocities, 1 to 10000 (got " +
+                      fmtg(n) + ")");
+    job.kinetic_n = static_cast<int>(n);
+    if (job.kinetic_vhi < job.kinetic_vlo)
+      throw SpecError("kinetic: needs vlo <= vhi (got vlo = " + fmtg(job.kinetic_vlo) +
+                      ", vhi = " + fmtg(job.kinetic_vhi) + ")");
+    if ((job.kinetic_n == 1) != (job.kinetic_vhi == job.kinetic_vlo))
+      throw SpecError("kinetic: n = 1 goes with vlo = vhi, n >= 2 with vlo < vhi");
+  } else {
+    return false;
+  }
+  return true;
+}
+
 // xmax on the grid: a whole number of steps of dx (Richardson needs the
 // fine grid to end at the same X), within the solver's step limit
 void round_xmax(MEJob &job, Richardson richardson)
@@ -383,7 +458,70 @@ void check_job(MEJob &job, Richardson richardson)
       throw SpecError("snapshot: X = " + num(s.first) + " outside [0, xmax]");
 }
 
+// the keywords of the master-equation solver that the renewal solution of
+// the thermal terms has no counterpart for
+void refuse_with_thermal(const MEJob &job)
+{
+  const std::string why = " not available with thermal, aging, delay or rest (solved by the "
+                          "renewal equation at the velocity v)";
+  if (job.opt.crossing == Crossing::STEP)
+    throw SpecError("crossing: step (the discrete model of fix eq/contacts) is" + why +
+                    "; use crossing exact");
+  if (!job.snapshots.empty()) throw SpecError("snapshot: Q(x;X) is" + why);
+  if (!job.exact_file.empty())
+    throw SpecError("exact: the Irwin-Hall reference (uniform thresholds at T = 0) is" + why);
+  if (!job.substrate_file.empty())
+    throw SpecError("substrate: the block's substrate shape is" + why);
+  if (job.reform.dist && !job.reform.dist->is_point())
+    throw SpecError("reform " + job.reform.text + ": with thermal, aging, delay or rest only "
+                    "reform delta x0 or none");
+}
+
+// the checks of a job with the thermal terms (instead of check_job);
+// sets job.richardson
+void check_thermal_job(MEJob &job, Richardson richardson)
+{
+  if (!(job.velocity > 0.0))
+    throw SpecError("velocity: required with thermal, aging, delay or rest (the slider "
+                    "velocity v > 0)");
+  refuse_with_thermal(job);
+  if (job.opt.start == MEStart::REFORM && !job.reform.dist)
+    throw SpecError("start reform: needs contacts that re-form (reform none given)");
+  if (!job.steady_file.empty() && !job.reform.dist)
+    throw SpecError("steady: contacts that never re-form have no steady state");
+  job.richardson = use_richardson(richardson, job.opt.crossing);
+  // cells times kernel cells of the renewal solution, before anything is
+  // allocated (the longest life does not depend on the temperature)
+  ThermalSlider s;
+  s.Pc = job.threshold.dist;
+  s.spec = job.thermal;
+  s.v = job.velocity;
+  s.reform = job.reform.dist != nullptr;
+  s.r0 = s.reform ? job.reform.dist->mean() : 0.0;
+  const double h = job.richardson ? 0.5 * job.opt.dx : job.opt.dx, cells = job.opt.Xmax / h;
+  const double work =
+      cells * std::min(cells, thermal_kernel_cells(s, h)) * (job.richardson ? 1.25 : 1.0);
+  if (work > THERMAL_MAX_WORK)
+    throw SpecError("dx: the renewal solution would take ~" +
+                    fmtg(std::round(work * THERMAL_SECONDS_PER_WORK)) + " s (" + fmtg(work) +
+                    " cell pairs at dx = " + fmtg(h) + (job.richardson ? " and 2 dx" : "") +
+                    ", xmax = " + fmtg(job.opt.Xmax) + "), at most ~" +
+                    fmtg(THERMAL_MAX_WORK * THERMAL_SECONDS_PER_WORK) + " s; raise dx or lower xmax");
+}
+
 }    // namespace
+
+ThermalSpec MEJob::thermal_spec() const
+{
+  ThermalSpec s = thermal;
+  s.theta = boltz * temperature / eps_a;
+  if (!std::isfinite(s.theta) || s.theta < 0.0)
+    throw SpecError("thermal: k_B T / eps_a = " + fmtg(s.theta) + " is not a finite number >= 0 "
+                    "(T = " + fmtg(temperature) + ", eps_a = " + fmtg(eps_a) + ", k_B = " +
+                    fmtg(boltz) + ")");
+  s.xc = threshold.dist ? threshold.dist->mean() : 1.0;
+  return s;
+}
 
 MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &number,
                    const FileLoader &load)
@@ -406,7 +544,7 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
     } else if (kw == "stiffness") {
       job.stiffness = in.distribution(Role::STIFFNESS, load);
     } else if (!read_solver_keyword(in, kw, job, richardson) &&
-               !read_output_keyword(in, kw, job)) {
+               !read_output_keyword(in, kw, job) && !read_thermal_keyword(in, kw, job)) {
       throw SpecError("unknown keyword '" + kw + "'; allowed: " + me_job_keywords());
     }
   }
@@ -415,7 +553,10 @@ MEJob parse_me_job(const std::vector<std::string> &args, const NumberParser &num
                     role_styles(Role::THRESHOLD));
   check_reform(*job.threshold.dist, job.reform);
   round_xmax(job, richardson);
-  check_job(job, richardson);
+  if (job.thermal_on()) check_thermal_job(job, richardson);
+  else check_job(job, richardson);
+  if (!job.kinetic_file.empty() && !job.reform.dist)
+    throw SpecError("kinetic: contacts that never re-form have no kinetic friction");
   return job;
 }
 
@@ -470,17 +611,22 @@ void solve_steady_state(const MEJob &job, JobSolution &sol)
 
 // per-contact stiffness k_i = kc f: F scales with <f>, the spread of one
 // contact's force is sqrt(<f^2><x^2> - <f>^2<x>^2)
-void scale_by_stiffness(const MEJob &job, JobSolution &sol)
+void scale_result(const MEJob &job, MEResult &res)
 {
   const double f1 = job.stiffness.dist->mean(), f2 = job.stiffness.dist->second_moment();
-  sol.f1 = f1;
-  if (job.stiffness.constant()) return;
-  MEResult &res = sol.res;
   for (size_t k = 0; k < res.F.size(); ++k) {
     const double x1 = res.F[k], x2 = res.sd[k] * res.sd[k] + x1 * x1;
     res.F[k] = f1 * x1;
     res.sd[k] = std::sqrt(std::max(0.0, f2 * x2 - f1 * f1 * x1 * x1));
   }
+}
+
+void scale_by_stiffness(const MEJob &job, JobSolution &sol)
+{
+  const double f1 = job.stiffness.dist->mean();
+  sol.f1 = f1;
+  if (job.stiffness.constant()) return;
+  scale_result(job, sol.res);
   sol.ss.F *= f1;
 }
 
@@ -675,11 +821,221 @@ void write_summary(const MEJob &job, const std::map<std::string, double> &v)
   for (const auto &kv : v) out << kv.first << " " << kv.second << "\n";
 }
 
+/* ----------------------------------------------------------------------
+   jobs with the thermal terms (thermal, aging, delay, rest): the renewal
+   solution and the steady-state quadrature of eq_thermal_steady
+------------------------------------------------------------------------- */
+
+// the contacts of a job on a slider at velocity v
+ThermalSlider job_slider(const MEJob &job, double v)
+{
+  ThermalSlider s;
+  s.Pc = job.threshold.dist;
+  s.spec = job.thermal_spec();
+  s.v = v;
+  s.reform = job.reform.dist != nullptr;
+  s.r0 = s.reform ? job.reform.dist->mean() : 0.0;
+  s.start = job.opt.start == MEStart::REFORM ? s.r0 : 0.0;
+  return s;
+}
+
+struct ThermalSolution {
+  MEResult res;
+  ThermalSteady ss;
+  double slope = 0.0;    // dF_k/d ln v
+  double f1 = 1.0;
+  double seconds = 0.0;
+  Extremum peak, kstar;
+};
+
+// the job's settings of the thermal terms, one line each
+std::string thermal_text(const MEJob &job, const ThermalSpec &t)
+{
+  std::string out;
+  if (job.temperature > 0.0)
+    out += format("  thermal      theta = k_B T/eps_a = %.6g (T = %g, eps_a = %g, k_B = %g), "
+                  "omega = %g, barrier p = %g, q = %g\n", t.theta, job.temperature, job.eps_a,
+                  job.boltz, t.omega, t.p, t.q);
+  else
+    out += "  thermal      none (T = 0): no thermally activated breaking\n";
+  if (t.aging != AgingLaw::NONE)
+    out += format("  aging        %s: x_s(t) = x_s0 A(t), beta = %g, tau_a = %g\n",
+                  t.aging == AgingLaw::LOG ? "log" : "exp", t.beta, t.tau_a);
+  if (t.delay != DelayKind::NONE && t.tau > 0.0)
+    out += format("  delay        %s, tau = %g (v tau = %.6g)\n",
+                  t.delay == DelayKind::FIXED ? "fixed" : "exponential", t.tau,
+                  job.velocity * t.tau);
+  if (t.rest > 0.0) out += format("  rest         t_w = %g: age of the contacts at X = 0\n", t.rest);
+  out += format("  velocity     v = %g\n", job.velocity);
+  return out;
+}
+
+std::string thermal_report_text(const MEJob &job, const ThermalSolution &sol,
+                                const ThermalSpec &t, double threshold_sd)
+{
+  const MEOptions &opt = job.opt;
+  std::string s = "FRICTION-EQ master equation of the EQ model (eq-me, eq/me)\n";
+  s += format("  threshold    %s   <x_s> = %.10g, sd = %.6g\n", job.threshold.text.c_str(),
+              job.threshold.dist->mean(), threshold_sd);
+  s += format("  reform       %s\n", job.reform.text.c_str());
+  if (!job.stiffness.constant())
+    s += format("  stiffness    %s: <k_i> = %.10g k_c (F below includes it)\n",
+                job.stiffness.text.c_str(), sol.f1);
+  s += thermal_text(job, t);
+  s += format("  grid         dx = %g, X in [0, %g], renewal equation on cells, start %s%s\n",
+              opt.dx, opt.Xmax, opt.start == MEStart::RELAXED ? "relaxed" : "reform",
+              job.richardson ? ", Richardson (dx, dx/2)" : "");
+  if (std::fabs(job.xmax_requested - opt.Xmax) > 1e-12 * opt.Xmax)
+    s += format("  NOTE         xmax %g rounded to %g, a whole number of steps dx\n",
+                job.xmax_requested, opt.Xmax);
+  if (sol.peak.found)
+    s += format("  static peak  F_s/(N k_c) = %.10f at X = %.6f\n", sol.peak.value, sol.peak.X);
+  else
+    s += "  static peak  none: F still increases at xmax\n";
+  if (job.reform.dist)
+    s += format("  kinetic      F_k/(N k_c) = %.10f (steady state at v), dF_k/d ln v = %.6g, "
+                "Gamma_s = %.10f, attached %.10f\n",
+                sol.ss.F, sol.slope, sol.ss.Gamma, sol.ss.attached);
+  s += format("  F(xmax)      F/(N k_c)   = %.10f\n", sol.res.F.back());
+  if (sol.kstar.found)
+    s += format("  stiffness    K*/K_s      = %.10f at X = %.6f\n", sol.kstar.value, sol.kstar.X);
+  else
+    s += "  stiffness    K*/K_s      = 0: F never decreases within [0, xmax]\n";
+  s += format("  probability  max |attached + detached - 1| = %.3g\n", sol.res.max_mass_error);
+  s += format("  time         %.3f s\n", sol.seconds);
+  return s;
+}
+
+void thermal_values(const MEJob &job, const ThermalSolution &sol, const ThermalSpec &t,
+                    std::map<std::string, double> &v)
+{
+  const Distribution &Pc = *job.threshold.dist;
+  v["threshold_mean"] = Pc.mean();
+  v["threshold_sd"] = std::sqrt(std::max(0.0, Pc.variance()));
+  v["stiffness_mean"] = sol.f1;
+  v["theta"] = t.theta;
+  v["velocity"] = job.velocity;
+  if (sol.peak.found) {
+    v["static_peak"] = sol.peak.value;
+    v["static_peak_X"] = sol.peak.X;
+  }
+  v["kstar"] = sol.kstar.value;
+  if (sol.kstar.found) v["kstar_X"] = sol.kstar.X;
+  v["force_at_xmax"] = sol.res.F.back();
+  v["mass_error"] = sol.res.max_mass_error;
+  v["seconds"] = sol.seconds;
+  v["dx"] = job.opt.dx;
+  v["xmax"] = job.opt.Xmax;
+  if (job.reform.dist) {
+    v["kinetic_force"] = sol.ss.F;
+    v["kinetic_slope"] = sol.slope;
+    v["steady_rate"] = sol.ss.Gamma;
+    v["attached_fraction"] = sol.ss.attached;
+    v["lifetime"] = sol.ss.lifetime;
+  }
+}
+
+// force table of the transient: the columns of write_force
+void write_thermal_force(const MEJob &job, const MEResult &res, const std::string &settings)
+{
+  std::ofstream out = open_out("force", job.force_file);
+  out << "# eq-me: threshold " << job.threshold.text << ", reform " << job.reform.text << ", dx "
+      << job.opt.dx << "\n# renewal equation from X = 0 (all contacts formed there, age t_w)\n"
+      << settings << "# X F/(N*kc) sd(x) Gamma attached skewness(x)\n";
+  for (size_t k = 0; k < res.X.size(); ++k)
+    out << res.X[k] << " " << res.F[k] << " " << res.sd[k] << " " << res.Gamma[k] << " "
+        << res.attached[k] << " " << res.skew[k] << "\n";
+}
+
+// steady table: x Q_s(x) = Gamma_s S(x - r0) (integrates to the attached
+// fraction)
+void write_thermal_steady(const MEJob &job, const ThermalTransient &tt, const ThermalSteady &ss,
+                          double r0, const std::string &settings)
+{
+  const SurvivalTable &S = *tt.later_lives();
+  std::ofstream out = open_out("steady", job.steady_file);
+  out << "# eq-me steady state: threshold " << job.threshold.text << ", reform "
+      << job.reform.text << "\n" << settings << "# F_k/(N*kc) = " << ss.F
+      << ", Gamma_s = " << ss.Gamma << ", attached " << ss.attached << "\n# x Q_s(x)\n";
+  const int npoints = 2001;
+  const double top = S.end() > 0.0 ? S.end() : 1.0;
+  for (int i = 0; i < npoints; ++i) {
+    const double y = top * i / (npoints - 1);
+    out << r0 + y << " " << ss.Gamma * S(y) << "\n";
+  }
+}
+
+// the settings of the thermal terms as comment lines of a table
+std::string settings_comment(const MEJob &job, const ThermalSpec &t)
+{
+  std::string text = thermal_text(job, t), out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out += "#" + line.substr(1) + "\n";
+  return out;
+}
+
+// kinetic table: v F_k dF_k/dlnv attached_fraction Gamma_s; its report line
+std::string write_kinetic(const MEJob &job, double f1, bool write_file)
+{
+  const ThermalSpec t = job.thermal_spec();
+  const std::vector<KineticPoint> tab =
+      kinetic_table(job_slider(job, job.kinetic_vlo), job.kinetic_vlo, job.kinetic_vhi,
+                    job.kinetic_n);
+  if (write_file) {
+    std::ofstream out = open_out("kinetic", job.kinetic_file);
+    out << "# eq-me kinetic friction (steady state): threshold " << job.threshold.text
+        << ", reform " << job.reform.text << "\n" << settings_comment(job, t)
+        << "# v F_k/(N*kc) dF_k/dlnv attached_fraction Gamma_s\n";
+    out << std::setprecision(15);
+    for (const KineticPoint &p : tab)
+      out << p.v << " " << f1 * p.F << " " << f1 * p.slope << " " << p.attached << " " << p.Gamma
+          << "\n";
+  }
+  return format("  kinetic      %s: F_k(v) at %d velocities in [%g, %g]: %.8f ... %.8f\n",
+                job.kinetic_file.c_str(), job.kinetic_n, job.kinetic_vlo, job.kinetic_vhi,
+                f1 * tab.front().F, f1 * tab.back().F);
+}
+
+MEReport run_thermal_job(const MEJob &job, bool write_files)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  const ThermalSpec t = job.thermal_spec();
+  const ThermalSlider s = job_slider(job, job.velocity);
+  const ThermalTransient tt(s);
+  ThermalSolution sol;
+  sol.res = tt.solve(job.opt.dx, job.opt.Xmax, job.richardson);
+  if (s.reform) {
+    sol.ss = thermal_steady_state(s);
+    sol.slope = kinetic_slope(s);
+  }
+  sol.f1 = job.stiffness.dist->mean();
+  if (!job.stiffness.constant()) {
+    scale_result(job, sol.res);
+    sol.ss.F *= sol.f1;
+    sol.slope *= sol.f1;
+  }
+  sol.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  sol.peak = static_peak(sol.res);
+  sol.kstar = critical_stiffness(sol.res);
+
+  MEReport rep;
+  thermal_values(job, sol, t, rep.values);
+  rep.text = thermal_report_text(job, sol, t, rep.values["threshold_sd"]);
+  if (!job.kinetic_file.empty()) rep.text += write_kinetic(job, sol.f1, write_files);
+  if (!write_files) return rep;
+  const std::string settings = settings_comment(job, t);
+  if (!job.force_file.empty()) write_thermal_force(job, sol.res, settings);
+  if (!job.steady_file.empty()) write_thermal_steady(job, tt, sol.ss, s.r0, settings);
+  if (!job.summary_file.empty()) write_summary(job, rep.values);
+  return rep;
+}
+
 }    // namespace
 
 MEReport run_me_job(const MEJob &job, bool write_files)
 {
   if (write_files) check_me_outputs(job);
+  if (job.thermal_on()) return run_thermal_job(job, write_files);
   const auto t0 = std::chrono::steady_clock::now();
   JobSolution sol;
   sol.res = solve_job(job);
@@ -694,6 +1050,7 @@ MEReport run_me_job(const MEJob &job, bool write_files)
   rep.text = report_job_text(job, sol, rep.values["threshold_sd"]);
   rep.text += report_result_text(job, sol);
   if (!job.exact_file.empty()) compare_exact(job, sol, write_files, rep);
+  if (!job.kinetic_file.empty()) rep.text += write_kinetic(job, sol.f1, write_files);
   if (!write_files) return rep;
 
   if (!job.force_file.empty()) write_force(job, sol.res);

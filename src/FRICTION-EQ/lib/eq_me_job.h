@@ -35,6 +35,17 @@
      force FILE | steady FILE | snapshot X FILE | summary FILE | exact FILE
      substrate FILE KEYWORD uc   the block's substrate shape phi(u) = F(u)/(N k_c)
                             on [0, uc] as a table section for fix eq/substrate
+   temperature, aging, delays (eq_thermal.h; the syntax of fix eq/contacts):
+     thermal T eps_a omega  theta = k_B T / eps_a (k_B = MEJob::boltz)
+     barrier p q            exponents of the barrier (0 0)
+     aging none | log beta tau_a | exp beta tau_a
+     delay none | fixed tau | exp tau
+     rest t_w               age of the contacts at X = 0
+     velocity v             slider velocity (required with any of the above)
+     kinetic FILE vlo vhi n table of F_k(v) at n log-spaced velocities
+   With thermal (T > 0), aging, delay or rest the job is solved by
+   eq_thermal_steady (renewal equation and steady-state quadrature) at the
+   velocity v; without them by the master-equation solver as before.
 ------------------------------------------------------------------------- */
 
 #ifndef FEQ_ME_JOB_H
@@ -42,6 +53,7 @@
 
 #include "eq_distribution.h"
 #include "eq_master_equation.h"
+#include "eq_thermal.h"
 
 #include <map>
 #include <string>
@@ -59,6 +71,26 @@ struct MEJob {
   double substrate_uc = 0.0;
   std::vector<std::pair<double, std::string>> snapshots;
   double xmax_requested = 0.0;    // before rounding to a multiple of dx
+
+  // temperature, aging, delay: thermal.theta is set by thermal_spec()
+  ThermalSpec thermal;
+  double temperature = 0.0, eps_a = 1.0;
+  double boltz = 1.0;       // k_B: 1 in eq-me, force->boltz in eq/me (set after parsing)
+  double velocity = 0.0;    // 0: not given
+  std::string kinetic_file;
+  double kinetic_vlo = 0.0, kinetic_vhi = 0.0;
+  int kinetic_n = 0;
+
+  // any of thermal (T > 0), aging, delay (tau > 0), rest (t_w > 0): the
+  // job is solved by the renewal equation at the velocity v
+  bool thermal_on() const
+  {
+    return temperature > 0.0 || thermal.aging != AgingLaw::NONE ||
+        (thermal.delay != DelayKind::NONE && thermal.tau > 0.0) || thermal.rest > 0.0;
+  }
+  // thermal with theta = boltz T / eps_a and xc = <x_s>; SpecError naming
+  // thermal when theta is not finite
+  ThermalSpec thermal_spec() const;
 };
 
 // Parses keyword/value pairs; throws SpecError naming the keyword.  Also
