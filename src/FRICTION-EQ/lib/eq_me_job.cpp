@@ -238,6 +238,11 @@ class JobArgs {
   }
 
   bool more() const { return pos < args.size(); }
+  // kw (just read) as one of the keywords shared with fix eq/contacts
+  bool thermal_keyword(const std::string &kw, ThermalKeywords &t)
+  {
+    return parse_thermal_keyword(kw, args, pos, number, t);
+  }
   const std::string &next() { return args[pos++]; }
 
   // the next token: the value of keyword kw
@@ -363,27 +368,15 @@ bool read_output_keyword(JobArgs &in, const std::string &kw, MEJob &job)
 // of them.  The syntax and messages of fix eq/contacts.
 bool read_thermal_keyword(JobArgs &in, const std::string &kw, MEJob &job)
 {
-  ThermalSpec &t = job.thermal;
-  if (kw == "thermal") {
-    job.temperature = in.at_least("thermal T", 0.0, false);
-    job.eps_a = in.at_least("thermal eps_a", 0.0, true);
-    t.omega = in.at_least("thermal omega", 0.0, true);
-  } else if (kw == "barrier") {
-    t.p = in.at_least("barrier p", 0.0, false);
-    t.q = in.at_least("barrier q", 0.0, false);
-  } else if (kw == "aging") {
-    const int law = in.choice(kw, {"none", "log", "exp"});
-    t.aging = law == 0 ? AgingLaw::NONE : law == 1 ? AgingLaw::LOG : AgingLaw::EXP;
-    if (law != 0) {
-      t.beta = in.at_least("aging beta", 0.0, false);
-      t.tau_a = in.at_least("aging tau_a", 0.0, true);
-    }
-  } else if (kw == "delay") {
-    const int kind = in.choice(kw, {"none", "fixed", "exp"});
-    t.delay = kind == 0 ? DelayKind::NONE : kind == 1 ? DelayKind::FIXED : DelayKind::EXPONENTIAL;
-    t.tau = kind == 0 ? 0.0 : in.at_least("delay tau", 0.0, false);
-  } else if (kw == "rest") {
-    t.rest = in.at_least("rest t_w", 0.0, false);
+  // the keywords of fix eq/contacts: one parser for both (eq_thermal)
+  ThermalKeywords t;
+  t.temperature = job.temperature;
+  t.eps_a = job.eps_a;
+  t.spec = job.thermal;
+  if (in.thermal_keyword(kw, t)) {
+    job.temperature = t.temperature;
+    job.eps_a = t.eps_a;
+    job.thermal = t.spec;
   } else if (kw == "velocity") {
     job.velocity = in.at_least("velocity", 0.0, true);
   } else if (kw == "kinetic") {
