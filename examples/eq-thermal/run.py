@@ -9,7 +9,9 @@ summary and writes out/eq-thermal.png:
   left:  kinetic friction F_k(v) over six decades of the slider velocity,
          thermal (theta = 0.01, 0.02, 0.05), threshold aging (beta = 0.05,
          tau_a = 1) and both with an exponential delay (tau = 10): EQ
-         runs (per-contact time averages, +-2 standard errors) against eq-me;
+         runs (per-contact time averages over X in [3, 6], +-2 standard
+         errors) against eq-me's steady F_k (lines) and its F(X) averaged over
+         the same window (crosses: at small v aging is not steady by X = 3);
   right: F(X) after a rest t_w = 0, 1e2, 1e4, 1e6 (T = 0, aging, v = 1e-2):
          the static peak grows with ln t_w.
 
@@ -54,6 +56,15 @@ def eq_kinetic(out, kw, v, nprocs):
     return m.mean(), m.std(ddof=1) / math.sqrt(len(m)), loop
 
 
+def me_window(out, kw, v):
+    """eq-me's F(X) from fresh contacts, averaged over the runs' window"""
+    eqtools.run_eqme(THRESHOLD + kw + ["velocity", v, "xmax", 2 * XHALF, "dx", DX, "force",
+                                       "me_F.dat"], cwd=out)
+    me = eqtools.load(out / "me_F.dat")
+    w = (me[:, 0] > XHALF + 0.5 * DX) & (me[:, 0] < 2 * XHALF + 0.5 * DX)
+    return me[w, 1].mean()
+
+
 def run(nprocs=1, out=None, plot=True, quiet=False):
     out = Path(out or HERE / "out")
     out.mkdir(parents=True, exist_ok=True)
@@ -67,22 +78,25 @@ def run(nprocs=1, out=None, plot=True, quiet=False):
         curve = eqtools.load(out / f"Fk_{tag}.dat")    # v F_k slope n_a Gamma_s
         pts = [eq_kinetic(out / f"{tag}_v{v:g}", kw, v, nprocs) for v in VELOCITIES]
         Fme = np.interp(np.log(VELOCITIES), np.log(curve[:, 0]), curve[:, 1])
+        # what the runs average: F(X) of eq-me over the same window (the
+        # run starts from fresh contacts; at small v aging is still slow there)
+        Fwin = np.array([me_window(out / f"{tag}_v{v:g}", kw, v) for v in VELOCITIES])
         F, se, loops = (np.array(c) for c in zip(*pts))
-        res["curves"][label] = dict(me=curve, F=F, se=se, Fme=Fme, z=(F - Fme) / se,
-                                    loop=loops.sum())
+        res["curves"][label] = dict(me=curve, F=F, se=se, Fme=Fme, Fwin=Fwin,
+                                    z=(F - Fwin) / se, loop=loops.sum())
     for tw in RESTS:
         d = out / f"rest{tw:g}"
         d.mkdir(parents=True, exist_ok=True)
         eqtools.run_lammps(HERE / "in.eq-thermal",
                            {"n": N_SIDE, "v": 1e-2, "dX": DX, "Xhalf": 1.0, "out": d,
-                            "contacts": " ".join(THRESHOLD + AGING + ["rest", tw])},
+                            "contacts": " ".join(THRESHOLD + AGING + ["rest", str(tw)])},
                            nprocs=nprocs, cwd=d)
         eq = eqtools.load(d / "F.dat")
         me = eqtools.run_eqme(THRESHOLD + AGING + ["rest", tw, "velocity", 1e-2, "xmax", 2.0,
                                                    "dx", DX, "force", "me_F.dat"], cwd=d)
         mef = eqtools.load(d / "me_F.dat")
         res["rests"][tw] = dict(X=eq[:, 1], F=eq[:, 2], me=mef, peak=eq[:, 2].max(),
-                                peak_me=me["static_force"])
+                                peak_me=me["static_peak"])
     res["seconds"] = time.time() - t0
     # cost per contact-step at T > 0 against T = 0, same scene
     res["cost"] = cost(out, nprocs)
@@ -107,8 +121,9 @@ def cost(out, nprocs):
 def summary(res, N, nprocs):
     print(f"FRICTION-EQ eq-thermal: N = {N} contacts, thresholds uniform [0.75, 1.25], "
           f"dX = {DX:g}, {nprocs} MPI rank(s)")
-    print("  kinetic friction F_k/(N k_c), EQ (per-contact time averages on X in "
-          f"[{XHALF:g}, {2 * XHALF:g}]) against eq-me:")
+    print("  kinetic friction F_k/(N k_c): EQ (per-contact time averages on X in "
+          f"[{XHALF:g}, {2 * XHALF:g}]) / eq-me over the same window; z: their difference in "
+          "standard errors; eq-me steady F_k in the plot")
     vs = "  ".join(f"v = {v:<8g}" for v in VELOCITIES)
     print(f"    {'':34s} {vs}   max|z|  slope EQ / ME")
     for label, c in res["curves"].items():
@@ -136,9 +151,12 @@ def make_plot(out, res, N):
         col = f"C{k}"
         ax.semilogx(c["me"][:, 0], c["me"][:, 1], "-", color=col, lw=1.1, label=label)
         ax.errorbar(VELOCITIES, c["F"], yerr=2 * c["se"], fmt="o", color=col, ms=4)
+        ax.plot(VELOCITIES, c["Fwin"], "x", color="k", ms=5, mew=0.8,
+                label="eq-me over the runs' window" if k == 0 else None)
     ax.set_xlabel(r"slider velocity $v$ ($x_c\,\omega$)")
     ax.set_ylabel(r"$F_k/(N k_c)$")
-    ax.set_title(f"lines: eq-me; points: EQ, N = {N}", fontsize=9)
+    ax.set_title(f"lines: eq-me, steady; points: EQ, N = {N}, X in [{XHALF:g}, {2 * XHALF:g}]",
+                 fontsize=9)
     ax.legend(fontsize=7, loc="lower left")
     for k, (tw, r) in enumerate(res["rests"].items()):
         col = f"C{k}"
