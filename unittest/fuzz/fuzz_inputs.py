@@ -415,6 +415,15 @@ def gen_contacts(b):
                ("avalanches", [P("file", "aval.dat", "outfile")])]
     extras1 = [("dir", ["y"]), ("crossing", ["step"]), ("start", ["reform"]),
                ("reform_as", ["stretch"])]
+    # temperature, aging and delays: every value (configuration 2)
+    extras2 = [("thermal", [P("T", "0.05", valid=("zero",)), P("eps_a", "1.0"),
+                            P("omega", "1.0")]),
+               ("barrier", [P("p", "2.0", valid=("zero",)), P("q", "0.25", valid=("zero",))]),
+               ("aging", [style_word("aging", "log", ("none", "log", "exp")),
+                          P("beta", "0.05", valid=("zero",)), P("tau_a", "1.0")]),
+               ("delay", [style_word("delay", "exp", ("none", "fixed", "exp")),
+                          P("tau", "0.1", valid=("zero",))]),
+               ("rest", [P("t_w", "10.0", valid=("zero",))])]
     for k, (thr, ref, stf) in enumerate(dist_groups()):
         thr = (thr[0], [style_word("style", thr[1][0], ("uniform", "gaussian", "realistic", "table"))]
                + thr[1][1:]) if k == 0 else thr
@@ -422,7 +431,7 @@ def gen_contacts(b):
                + ref[1][1:]) if k == 0 else ref
         stf = (stf[0], [style_word("style", stf[1][0], ("constant", "uniform", "gaussian"))]
                + stf[1][1:]) if k == 0 else stf
-        extra = extras0 if k == 0 else (extras1 if k == 1 else [])
+        extra = extras0 if k == 0 else (extras1 if k == 1 else (extras2 if k == 2 else []))
         cmd = contacts_cmd(thr, ref, stf, extra)
         files = dict(GOOD_FILES)
         b.add(f"contacts.control{k}", "control", fill(BASE_CONTACTS, contacts=cmd.line()),

@@ -192,6 +192,8 @@ def chain(n=40, ntypes=1):
 
 
 C_ARGS = "1.0 99 threshold uniform 0.75 1.25"
+# temperature, aging and a delay: 9 more values per contact
+C_THERMAL = C_ARGS + " thermal 0.1 1.0 1.0 aging log 0.05 1.0 delay exp 0.1"
 S_ARGS = "1.0 sawtooth 1.0 drive 0.07 0.01 stage 14.5"
 S_DISORDER = " disorder gaussian 1.0 0.05 9"
 MP_ARGS = "100 1.0 threshold gaussian 1.0 0.25 reform gaussian 0.05 0.1 drive 10.0 1.0 check 50"
@@ -441,6 +443,9 @@ def gen_unfix_within(b):
                 for d in ("qs", "move")]
                + [contacts_system("none", "qs"), substrate_system("elastic"),
                   substrate_system("hybrid-zero"), meso_system("elastic"), meso_system("hybrid-zero")])
+    thermal = contacts_system("none", "move", cargs=C_THERMAL)
+    thermal.name += "-thermal"
+    systems.append(thermal)
     for s in systems:
         for aid, cmds, exp in within_actions(s):
             every = 25 if aid.endswith("-late") else 10
@@ -634,6 +639,17 @@ def gen_restart_args(b):
     for aid, args, same in free:
         b.add(cls, f"contacts.{aid}", restart_case(base, fc + args, refs if same else [], thermo=th), ok())
     b.add(cls, "contacts.unchanged", restart_case(base, fc + C_ARGS, refs, thermo=th), ok())
+    # the thermal keywords change the per-atom layout: added or dropped is
+    # an error naming them; their values may change (a temperature jump)
+    tbase = contacts_system("none", "nve", cargs=C_THERMAL)
+    b.add(cls, "contacts.thermal-added", restart_case(base, fc + C_THERMAL, []),
+          err(r"Fix \S+ eq/contacts", r"restart.*\bthermal\b"), files)
+    b.add(cls, "contacts.thermal-dropped", restart_case(tbase, fc + C_ARGS, []),
+          err(r"Fix \S+ eq/contacts", r"restart.*\bthermal\b"), files)
+    b.add(cls, "contacts.thermal-unchanged", restart_case(tbase, fc + C_THERMAL, refs, thermo=th), ok())
+    b.add(cls, "contacts.thermal-values", restart_case(
+        tbase, fc + C_ARGS + " thermal 0.3 1.0 2.0 aging exp 0.1 3.0 delay fixed 0.2 rest 5", [],
+        thermo=th), ok())
     b.add(cls, "contacts.unchanged-rich", restart_case(rbase, fc + rich, refs, thermo=th), ok())
     qs = contacts_system("elastic", "qs")
     b.add(cls, "contacts-elastic-qs.unchanged",
@@ -862,9 +878,13 @@ RESTART_ERR = r"restart|read_restart|file"
 def gen_restart_garbled(b):
     cls = "restart-garbled"
     files = {"garble.py": GARBLE_PY}
-    systems = [contacts_system("elastic", "nve"), substrate_system("elastic"), meso_system("none")]
+    thermal = contacts_system("none", "nve", cargs=C_THERMAL)
+    systems = [contacts_system("elastic", "nve"), substrate_system("elastic"), meso_system("none"),
+               thermal]
     for s in systems:
         tag, style = s.style.split("/")[1], s.style
+        if s is thermal:
+            tag += "-thermal"
         for frac in ("0.05", "0.2", "0.4", "0.6", "0.8", "0.97"):
             b.add(cls, f"{tag}.truncate-{frac}", garbled_case(s, f"truncate {frac}"), err(RESTART_ERR), files)
         b.add(cls, f"{tag}.cut-in-global", garbled_case(s, f"cut-after {style} 0 6"), err(RESTART_ERR), files)
@@ -917,7 +937,7 @@ def gen_restart_garbled(b):
             exp = err(RESTART_ERR + "|" + re.escape(style)) if kind == "error" else robust(RESTART_ERR)
             b.add(cls, f"{tag}.global-{aid}", garbled_case(s, f"global {style} {idx} {val}"), exp, files)
     # per-atom records of one style read by a fix of another style or ID
-    sc, ss, sm = systems
+    sc, ss, sm = systems[:3]
     for aid, s, old, new, fixes in [
         ("contacts-as-substrate", sc, "eq/contacts", "eq/substrate",
          "fix c all eq/substrate 1.0 sawtooth 1.0\nfix m all nve/noforce\n"),

@@ -292,7 +292,12 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
       throw BreakError("contact " + std::to_string(tag) + " broke more than " +
                        std::to_string(MAX_BREAKS_PER_STEP) + " times in one step (stretch " +
                        num(m) + " at the end of the step, threshold " + num(st[CS_THRESHOLD]) +
-                       "); reduce the timestep or check the reform and threshold distributions");
+                       "); reduce the timestep or check the reform and threshold distributions" +
+                       (thermal.params().thermal()
+                            ? " and the thermal keyword (its attempt frequency omega: breaking "
+                              "rate " + num(thermal.rate(0.0, st[CS_THRESHOLD])) +
+                              " for an unstretched contact)"
+                            : std::string()));
     ++nbreaks;
     res.renewed = true;
     const uint64_t event = static_cast<uint64_t>(st[CS_NBREAK]) + 1;

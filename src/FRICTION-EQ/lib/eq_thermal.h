@@ -115,7 +115,7 @@ class ThermalModel {
     }
     r.psi = log_rate(u, xs);
     r.nu = std::exp(r.psi);
-    r.smooth = true;
+    r.smooth = std::isfinite(r.psi);    // (not with a rate of 0 from extreme exponents)
     return r;
   }
 
