@@ -56,7 +56,9 @@
    same-cell breaks and delays make each cell a 2x2 linear solve; the
    probability is conserved by construction and the long-X limit is the
    steady state above exactly; F(X) is second order in dx (Richardson:
-   ~1e-12 at dx = 1e-3).  At T > 0, S and S_1 are piecewise Chebyshev
+   1e-12 to 2e-9 at dx = 1e-3 where F is smooth or its kinks lie on the
+   grid, 3e-8 to 3e-7 with kinks off the grid: T = 0 with aging or a
+   fixed delay).  At T > 0, S and S_1 are piecewise Chebyshev
    interpolants (degree 16, split until the coefficients fall below
    1e-11) of the direct quadrature above (over x_s0 at fixed y: P_c
    against an interpolant of 1 - e^-H), an order of the integrals
