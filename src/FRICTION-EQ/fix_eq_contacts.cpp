@@ -602,7 +602,7 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks
         if (st[CT_WAIT] > 0.0) st[CS_ANCHOR] = xu;
         else st[CS_STRETCH] = m;
       } else {
-        const ThermalStepResult r = model->advance(st, id, m, dt, nb);
+        const ThermalStepResult r = model->step(st, id, m, dt, nb);
         if (r.attached && r.renewed) {
           st[CS_ANCHOR] = xu - r.stretch;
           st[CS_STRETCH] = unwrap.stretch(xu - st[CS_ANCHOR]);

@@ -14,6 +14,7 @@
 #include "gtest/gtest.h"
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -285,4 +286,43 @@ TEST(Thermal, HazardIsSimpsonsRule)
             EXPECT_GT(simpson, 0.0);
           }
       }
+}
+
+// step(), the inline common case, gives advance()'s numbers to the last
+// bit, step after step (thermal, aging, delays; both crossings)
+TEST(Thermal, InlineStepIsAdvance)
+{
+  ThermalSpec t = thermal(0.05);
+  t.aging = AgingLaw::LOG;
+  t.beta = 0.05;
+  t.delay = DelayKind::EXPONENTIAL;
+  t.tau = 0.3;
+  for (const bool exact : {true, false}) {
+    const ContactModel m = model(t, exact);
+    for (uint64_t tag = 1; tag <= 40; ++tag) {
+      std::vector<double> a = row(m, tag), b = a;
+      long na = 0, nb = 0;
+      int fast = 0;
+      for (int k = 1; k <= 2000; ++k) {
+        const double x = 0.011 * k + 0.3 * std::sin(0.05 * k);    // back and forth
+        const double dt = 0.2;
+        // attached: the stretch x - anchor; waiting: the motion since the
+        // anchor (the atom's position at the last step end)
+        auto in = [&](const std::vector<double> &r) { return x - r[CS_ANCHOR]; };
+        const bool quick = a[CT_WAIT] <= 0.0 && std::fabs(in(a)) < a[CT_XS_LOW];
+        const ThermalStepResult ra = m.step(a.data(), tag, in(a), dt, na);
+        const ThermalStepResult rb = m.advance(b.data(), tag, in(b), dt, nb);
+        for (std::vector<double> *r : {&a, &b}) {    // as fix eq/contacts does
+          const ThermalStepResult &res = r == &a ? ra : rb;
+          if (!res.attached && (*r)[CS_THRESHOLD] > 0.0) (*r)[CS_ANCHOR] = x;
+          else if (res.renewed) (*r)[CS_ANCHOR] = x - res.stretch;
+        }
+        fast += quick && !ra.renewed;
+        ASSERT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(double))) << tag << " " << k;
+        ASSERT_EQ(na, nb);
+      }
+      EXPECT_GT(na, 10);
+      EXPECT_GT(fast, 1000);
+    }
+  }
 }

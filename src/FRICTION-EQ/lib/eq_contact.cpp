@@ -45,7 +45,7 @@ ContactModel::ContactModel(double kc, uint64_t seed_, const DistributionSpec &th
                            const ThermalSpec &thermal_) :
     k0(kc), seed(seed_), threshold(threshold_), reform(reform_), stiffness(stiffness_),
     exact(exact_), reform_force(reform_force_), start_reform(start_reform_), thermal(thermal_),
-    thermal_on(thermal_.active())
+    thermal_on(thermal_.active()), thermal_T(thermal_.thermal())
 {
   if (!threshold.dist) throw SpecError("threshold: missing distribution");
   if (!(k0 > 0.0) || !std::isfinite(k0)) throw SpecError("kc must be finite and > 0");
@@ -239,7 +239,8 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
       continue;
     }
     // attached over [f, 1]: the stretch goes from s_a to s_b, the age from a_a to a_a + h
-    const double s_b = s_a + motion * (1.0 - f);
+    // (the end of a whole step: the stretch m itself)
+    const double s_b = (f == 0.0 && !waiting0) ? m : s_a + motion * (1.0 - f);
     const double a_a = st[CT_AGE], xs0 = st[CS_THRESHOLD];
     double g = 1.0;    // fraction of the piece at which it breaks
     bool broke = false;
@@ -264,15 +265,15 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
       cached.psi = st[CT_RATE_LOG];
       cached.smooth = st[CT_RATE_SMOOTH] != 0.0;
     }
-    const double dH = thermal.hazard(s_a, s_a + (s_b - s_a) * g, a_a, h * g, xs0,
-                                     have ? &cached : nullptr, &end);
+    const double x_g = g == 1.0 ? s_b : s_a + (s_b - s_a) * g;
+    const double dH = thermal.hazard(s_a, x_g, a_a, h * g, xs0, have ? &cached : nullptr, &end);
     if (dH > 0.0 && dH >= st[CT_BUDGET]) {    // thermal break, first
       g *= st[CT_BUDGET] / dH;
       broke = true;
     }
     if (!broke) {
       st[CT_BUDGET] -= dH;
-      st[CT_AGE] = a_a + h;
+      st[CT_AGE] = a_a + h;    // (a_a + dt for a whole step, as step())
       st[CS_STRETCH] = s_b;
       if (h > 0.0 && thermal.params().thermal()) {
         st[CT_RATE] = end.nu;

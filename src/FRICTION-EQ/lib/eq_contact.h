@@ -171,6 +171,39 @@ class ContactModel {
   // the end of the step).  A broken contact waits its delay, then re-forms.
   ThermalStepResult advance(double *st, uint64_t tag, double m, double dt, long &nbreaks) const;
 
+  // advance(), with its most common case inline: an attached contact that
+  // stays below the lower bound of its threshold and within its budget
+  // over a whole step (the same numbers as advance())
+  ThermalStepResult step(double *st, uint64_t tag, double m, double dt, long &nbreaks) const
+  {
+    if (st[CT_WAIT] > 0.0 || !(std::fabs(m) < st[CT_XS_LOW]) || !(dt > 0.0))
+      return advance(st, tag, m, dt, nbreaks);
+    const double s_a = st[CS_STRETCH];
+    if (thermal_T) {
+      RatePoint start, end;
+      const bool have = st[CT_RATE_AT] == s_a;
+      if (have) {
+        start.nu = st[CT_RATE];
+        start.psi = st[CT_RATE_LOG];
+        start.smooth = st[CT_RATE_SMOOTH] != 0.0;
+      }
+      const double dH =
+          thermal.hazard(s_a, m, st[CT_AGE], dt, st[CS_THRESHOLD], have ? &start : nullptr, &end);
+      if (dH > 0.0 && dH >= st[CT_BUDGET]) return advance(st, tag, m, dt, nbreaks);
+      st[CT_BUDGET] -= dH;
+      st[CT_RATE] = end.nu;
+      st[CT_RATE_LOG] = end.psi;
+      st[CT_RATE_SMOOTH] = end.smooth ? 1.0 : 0.0;
+      st[CT_RATE_AT] = m;
+    }
+    st[CT_AGE] += dt;
+    st[CS_STRETCH] = m;
+    ThermalStepResult res;
+    res.stretch = m;
+    res.attached = true;
+    return res;
+  }
+
   bool reforms() const { return reform.dist != nullptr; }
   bool reform_as_force() const { return reform_force; }
 
@@ -187,7 +220,7 @@ class ContactModel {
   double reform_cdf_lo, reform_cdf_hi;    // R truncated to |r| < max threshold
   double reform_top;                      // max threshold (effective for unbounded P_c)
   ThermalModel thermal;
-  bool thermal_on;
+  bool thermal_on, thermal_T;
 
   // a new life of a contact with temperature, aging or delays: budget, age 0
   void start_life(double *st, uint64_t tag, uint64_t event, uint32_t off) const;
