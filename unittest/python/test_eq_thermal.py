@@ -183,3 +183,35 @@ def test_any_processor_grid_and_restart_give_the_same_contacts(tmp_path, grid):
         assert cols(ref[step]) == cols(read[step]), step
     breaks = [float(r[4]) for r in cols(ref[400])]
     assert min(breaks) >= 1 and sum(breaks) > 2 * len(breaks)
+
+
+@pytest.mark.parametrize("units,boltz", [("lj", 1.0), ("real", 0.0019872067)])
+def test_eq_me_command_with_the_thermal_terms(tmp_path, units, boltz):
+    """The eq/me command (theta = k_B T / eps_a with LAMMPS' k_B of the
+    units) against the independent quadrature: theta = 0.02, v = 1e-4, and
+    the note's combined row (aging, exponential delay)."""
+    T = 300.0 if units == "real" else 0.02
+    eps = boltz * T / 0.02
+    inp = tmp_path / "in.me"
+    inp.write_text(f"""units {units}
+eq/me threshold uniform 0.75 1.25 thermal {T} {eps!r} 1.0 velocity 1e-4 xmax 2.0 dx 0.002
+print "A ${{eq_me_kinetic_force}} ${{eq_me_kinetic_slope}} ${{eq_me_static_peak}}"
+eq/me threshold uniform 0.75 1.25 thermal {T} {eps!r} 1.0 aging log 0.05 1.0 delay exp 10.0 &
+      velocity 1e-4 xmax 2.0 dx 0.002
+print "B ${{eq_me_kinetic_force}}"
+""")
+    log = eqtools.run_lammps(inp, {}, cwd=tmp_path)
+    a = [float(v) for v in next(l for l in log.splitlines() if l.startswith("A ")).split()[1:]]
+    b = float(next(l for l in log.splitlines() if l.startswith("B ")).split()[1])
+    p = ref.make_params(theta=0.02)
+    assert abs(a[0] - ref.steady_force(1e-4, p)) < 1e-7
+    # the slope against a centred difference of the reference (ln v +- 0.05)
+    h = 0.05
+    slope = (ref.steady_force(1e-4 * math.exp(h), p) - ref.steady_force(1e-4 * math.exp(-h), p)) / (2 * h)
+    assert abs(a[1] - slope) < 1e-4
+    # the static peak against the exact expectation of the discrete rule
+    # (which lowers F by about (dX/2) x the broken fraction, < 1e-4 here)
+    X, F, _ = ref.discrete_transient_force(1e-4, 2e-3, 1000, p)
+    assert abs(a[2] - F.max()) < 1e-4
+    pc = ref.make_params(theta=0.02, aging="log", beta=0.05, tau_a=1.0, delay="exp", tau=10.0)
+    assert abs(b - ref.steady_force(1e-4, pc)) < 1e-7
