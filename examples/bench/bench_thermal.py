@@ -6,22 +6,64 @@ without it, as bench_contacts.py) at T = 0 and with the keywords thermal
 lattice, slider at v = 1, dX = 0.01, a break per contact every ~100
 steps), and the ratio to T = 0 (issue 23's goal: at most 1.5).
 
+Part accuracy: run time against error at T > 0 (theta = 0.02, v = 1e-4,
+N = 10^4, ../eq-thermal/in.eq-thermal): F(X) at the common sample points
+X = 0.1 k on [0, 4] for slider steps dX = 0.05 ... 0.002 with crossing
+exact and step, the same seed (common random numbers); the reference is
+crossing exact at dX = 0.001.
+
   ./bench_thermal.py                 N = 1e4 and 1e6, 1 rank, minimum of 3
   ./bench_thermal.py --sizes 1e4     a quick check
+  ./bench_thermal.py --part accuracy
 """
 import argparse
+import math
 import sys
 from pathlib import Path
+
+import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 from bench_contacts import lattice, one  # noqa: E402
+sys.path.insert(0, str(HERE.parents[1] / "tools"))
+import eqtools  # noqa: E402
 
 CASES = [("T = 0", ""),
          ("thermal", "thermal 0.02 1.0 1.0"),
          ("thermal, barrier 2 0.25", "thermal 0.02 1.0 1.0 barrier 2 0.25"),
          ("aging (T = 0)", "aging log 0.05 1.0"),
          ("thermal + aging + delay", "thermal 0.02 1.0 1.0 aging log 0.05 1.0 delay exp 0.1")]
+
+
+def accuracy(out):
+    """RMS error of F(X) against the finest exact run, and loop time."""
+    contacts = "threshold uniform 0.75 1.25 thermal 0.02 1.0 1.0"
+    X_SAMPLE = np.round(np.arange(1, 41) * 0.1, 10)
+
+    def runF(dX, crossing):
+        d = out / f"acc_{crossing}_{dX:g}"
+        d.mkdir(parents=True, exist_ok=True)
+        log = eqtools.run_lammps(HERE.parent / "eq-thermal" / "in.eq-thermal",
+                                 {"n": 100, "v": 1e-4, "dX": dX, "Xhalf": 2.0, "out": d,
+                                  "contacts": f"{contacts} crossing {crossing}"}, cwd=d)
+        loop = sum(float(l.split()[3]) for l in log.splitlines() if l.startswith("Loop time of"))
+        f = eqtools.load(d / "F.dat")
+        idx = {round(x, 10): k for k, x in enumerate(np.round(f[:, 1], 10))}
+        return np.array([f[idx[x], 2] for x in X_SAMPLE]), loop
+
+    ref, _ = runF(0.001, "exact")
+    print("run time against error at T > 0: theta = 0.02, v = 1e-4, N = 10^4, F(X) at X = 0.1 k "
+          "on [0, 4],
+the same seed; reference: crossing exact at dX = 0.001.  Statistical error "
+          "of F/(N k_c) at this N: about %.1e" % (0.25 / math.sqrt(1e4)))
+    print(f"{'dX':>7}  {'exact: loop s':>13} {'RMS error':>10}   {'step: loop s':>12} {'RMS error':>10}")
+    for dX in (0.05, 0.02, 0.01, 0.005, 0.002):
+        row = []
+        for crossing in ("exact", "step"):
+            F, loop = runF(dX, crossing)
+            row += [loop, math.sqrt(np.mean((F - ref) ** 2))]
+        print(f"{dX:>7g}  {row[0]:>13.2f} {row[1]:>10.2e}   {row[2]:>12.2f} {row[3]:>10.2e}", flush=True)
 
 
 def main():
@@ -31,9 +73,13 @@ def main():
     ap.add_argument("--work", type=float, default=1e8, help="contact-steps per run (sets steps)")
     ap.add_argument("--repeat", type=int, default=3, help="runs per configuration (minimum taken)")
     ap.add_argument("--out", default=str(HERE / "out"))
+    ap.add_argument("--part", default="cost", choices=["cost", "accuracy"])
     a = ap.parse_args()
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
+    if a.part == "accuracy":
+        accuracy(out)
+        return
     print("fix eq/contacts with temperature, aging and delays: ns per contact-step of the fix "
           "(run with the fix minus the run without), minimum of %d" % a.repeat)
     print(f"{'N':>9} {'ranks':>5} {'steps':>6}  " + "  ".join(f"{c[0]:>24}" for c in CASES))

@@ -153,7 +153,9 @@ void FixEQPerAtom::unpack_restart(int nlocal, int nth)
                  "{} (a corrupt file, or one written by another version of the package or other "
                  "settings{})",
                  id, style, static_cast<long>(c) - 1, ncol,
-                 layout_hint().empty() ? std::string() : ": " + layout_hint());
+                 layout_hint(static_cast<long>(c) - 1).empty()
+                     ? std::string()
+                     : ": " + layout_hint(static_cast<long>(c) - 1));
     error->one(FLERR,
                "Fix {} {}: the restart file's per-atom data of atom {} is garbled: this fix's "
                "record (record {}) has length {}, expected {} with room for {} (a corrupt file, "

@@ -55,9 +55,9 @@ class FixEQPerAtom : public Fix {
   // a row restored from a restart file (finite values): what the fix
   // checks of its meaning (an error naming the atom when it is off)
   virtual void check_restored(int /*i*/) {}
-  // what makes the number of values per atom differ between runs (for
-  // the error when a restart file holds another number), "" if nothing
-  virtual std::string layout_hint() const { return ""; }
+  // what makes the number of values per atom differ between runs, for
+  // the error when a restart file holds `stored` values ("" if nothing)
+  virtual std::string layout_hint(long /*stored*/) const { return ""; }
   // a reference position (anchor, site) restored for atom i at most 1e9
   // times the scale of its coordinates away from it along dir: beyond
   // that, differences with it lose their digits (a garbled value); an

@@ -972,8 +972,10 @@ void FixEQContacts::check_restored(int i)
   if (th > 0.0) check_reach(i, idir, st[CS_ANCHOR], "anchor");
 }
 
-std::string FixEQContacts::layout_hint() const
+// only where the file holds the other layout of this fix
+std::string FixEQContacts::layout_hint(long stored) const
 {
+  if (stored != CS_NCOL && stored != CT_NCOL) return "";
   return fmt::format("the keywords {} add {} values per contact; give one of them in both the run "
                      "that wrote the file and this one, or in neither",
                      THERMAL_KEYWORDS, CT_NCOL - CS_NCOL);

@@ -79,7 +79,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
 
  protected:
   void check_restored(int i) override;
-  std::string layout_hint() const override;
+  std::string layout_hint(long stored) const override;
 
  public:
 
