@@ -258,17 +258,18 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
     }
     // the rate at the start: cached from the end of the last step if the
     // contact has not changed since (whole step, attached at its start)
-    RatePoint cached, end;
-    const bool have = f == 0.0 && st[CT_RATE_AT] == s_a;
-    if (have) {
-      cached.nu = st[CT_RATE];
-      cached.psi = st[CT_RATE_LOG];
-      cached.smooth = st[CT_RATE_SMOOTH] != 0.0;
+    RatePoint start, end;
+    if (f == 0.0 && st[CT_RATE_AT] == s_a) {
+      start.nu = st[CT_RATE];
+      start.psi = st[CT_RATE_LOG];
+      start.smooth = st[CT_RATE_SMOOTH] != 0.0;
+    } else if (thermal_T) {
+      start = thermal.start_point(s_a, a_a, xs0);
     }
     const double x_g = g == 1.0 ? s_b : s_a + (s_b - s_a) * g;
-    const double dH = thermal.hazard(s_a, x_g, a_a, h * g, xs0, have ? &cached : nullptr, &end);
-    if (dH > 0.0 && dH >= st[CT_BUDGET]) {    // thermal break, first
-      g *= st[CT_BUDGET] / dH;
+    const double dH = thermal.hazard(s_a, x_g, a_a, h * g, xs0, &start, &end);
+    if (dH > 0.0 && dH >= st[CT_BUDGET]) {    // thermal break, first: where the budget runs out
+      g *= ThermalModel::budget_fraction(st[CT_BUDGET] / dH, start, end);
       broke = true;
     }
     if (!broke) {

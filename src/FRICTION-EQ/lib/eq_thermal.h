@@ -119,6 +119,25 @@ class ThermalModel {
     return r;
   }
 
+  // the rate at the start of a step: stretch x0, age a0, threshold x_s0 A(a0)
+  RatePoint start_point(double x0, double a0, double xs0) const
+  {
+    return point(x0, spec.aging != AgingLaw::NONE ? xs0 * factor(a0) : xs0);
+  }
+
+  // the fraction of a step at which a budget r dH is used up, out of the
+  // step's hazard dH (0 < r <= 1), for a rate that grows exponentially
+  // from p0 to p1 over the step (exact for such a rate; linear, r, for a
+  // constant one)
+  static double budget_fraction(double r, const RatePoint &p0, const RatePoint &p1)
+  {
+    if (!(p0.smooth && p1.smooth)) return r;
+    const double d = p1.psi - p0.psi;    // ln(nu1/nu0)
+    if (!(std::fabs(d) > 1e-8)) return r;
+    const double g = std::log1p(r * std::expm1(d)) / d;
+    return g > 0.0 && g <= 1.0 ? g : r;
+  }
+
   // hazard accumulated over a time h while the stretch goes linearly from
   // x0 to x1 and the age from a0 to a0 + h (Simpson's rule).  start: the
   // point at (x0, a0) when known (else nullptr); end (if not null)
@@ -134,7 +153,7 @@ class ThermalModel {
     const double xsm = aging ? xs0 * factor(a0 + 0.5 * h) : xs0;
     // one division without aging (one threshold over the step)
     const double inv1 = 1.0 / xs1, invm = aging ? 1.0 / xsm : inv1;
-    const RatePoint p0 = start ? *start : point(x0, aging ? xs0 * factor(a0) : xs0);
+    const RatePoint p0 = start ? *start : start_point(x0, a0, xs0);
     const RatePoint p1 = point_u(1.0 - std::fabs(x1) * inv1, xs1);
     if (end) *end = p1;
     const double xm = 0.5 * (x0 + x1);
