@@ -54,8 +54,7 @@ def accuracy(out):
 
     ref, _ = runF(0.001, "exact")
     print("run time against error at T > 0: theta = 0.02, v = 1e-4, N = 10^4, F(X) at X = 0.1 k "
-          "on [0, 4],
-the same seed; reference: crossing exact at dX = 0.001.  Statistical error "
+          "on [0, 4],\nthe same seed; reference: crossing exact at dX = 0.001.  Statistical error "
           "of F/(N k_c) at this N: about %.1e" % (0.25 / math.sqrt(1e4)))
     print(f"{'dX':>7}  {'exact: loop s':>13} {'RMS error':>10}   {'step: loop s':>12} {'RMS error':>10}")
     for dX in (0.05, 0.02, 0.01, 0.005, 0.002):
