@@ -561,13 +561,7 @@ template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap
     natt += 1.0;
   }
   local_breaks_total += nb;
-  local_sum[SUM_FORCE] = fsum;
-  local_sum[SUM_ATTACHED] = natt;
-  local_sum[SUM_ENERGY] = 0.5 * esum;
-  local_sum[SUM_STRETCH] = ssum;
-  local_sum[SUM_COUNT] = ncount;
-  local_sum[SUM_TOTAL] = static_cast<double>(local_breaks_total);
-  reduced_valid = 0;
+  store_sums(fsum, esum, ssum, natt, ncount);
   return nb;
 }
 
@@ -625,6 +619,13 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks
     natt += 1.0;
   }
   local_breaks_total += nb;
+  store_sums(fsum, esum, ssum, natt, ncount);
+  return nb;
+}
+
+// the local sums of a force evaluation (reduced when an output asks)
+void FixEQContacts::store_sums(double fsum, double esum, double ssum, double natt, double ncount)
+{
   local_sum[SUM_FORCE] = fsum;
   local_sum[SUM_ATTACHED] = natt;
   local_sum[SUM_ENERGY] = 0.5 * esum;
@@ -632,7 +633,6 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks
   local_sum[SUM_COUNT] = ncount;
   local_sum[SUM_TOTAL] = static_cast<double>(local_breaks_total);
   reduced_valid = 0;
-  return nb;
 }
 
 // a contact that forms or reaches its threshold: formed, its breaks
@@ -819,13 +819,7 @@ void FixEQContacts::tally(double **f)
     ssum += s;
     natt += 1.0;
   }
-  local_sum[SUM_FORCE] = fsum;
-  local_sum[SUM_ATTACHED] = natt;
-  local_sum[SUM_ENERGY] = 0.5 * esum;
-  local_sum[SUM_STRETCH] = ssum;
-  local_sum[SUM_COUNT] = ncount;
-  local_sum[SUM_TOTAL] = static_cast<double>(local_breaks_total);
-  reduced_valid = 0;
+  store_sums(fsum, esum, ssum, natt, ncount);
 }
 
 /* ----------------------------------------------------------------------

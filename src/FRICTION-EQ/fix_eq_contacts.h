@@ -149,6 +149,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void apply(bool allow_breaks);
   template <bool ORTHOGONAL> long scan(const EQUtil::Unwrap &unwrap, bool allow_breaks);
   bool attached(const double *st) const;
+  void store_sums(double fsum, double esum, double ssum, double natt, double ncount);
   long scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt);
   bool settle(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, long &nb);
   void apply_forces();

@@ -623,8 +623,10 @@ void scale_by_stiffness(const MEJob &job, JobSolution &sol)
   sol.ss.F *= f1;
 }
 
-// the "name value" results of the report (rep.values)
-void report_values(const MEJob &job, const JobSolution &sol, std::map<std::string, double> &v)
+// the "name value" results of the report (rep.values); also those of a
+// job with the thermal terms (ThermalSolution has the same members)
+template <class Solution>
+void report_values(const MEJob &job, const Solution &sol, std::map<std::string, double> &v)
 {
   const Distribution &Pc = *job.threshold.dist;
   v["threshold_mean"] = Pc.mean();
@@ -902,27 +904,11 @@ std::string thermal_report_text(const MEJob &job, const ThermalSolution &sol,
 void thermal_values(const MEJob &job, const ThermalSolution &sol, const ThermalSpec &t,
                     std::map<std::string, double> &v)
 {
-  const Distribution &Pc = *job.threshold.dist;
-  v["threshold_mean"] = Pc.mean();
-  v["threshold_sd"] = std::sqrt(std::max(0.0, Pc.variance()));
-  v["stiffness_mean"] = sol.f1;
+  report_values(job, sol, v);
   v["theta"] = t.theta;
   v["velocity"] = job.velocity;
-  if (sol.peak.found) {
-    v["static_peak"] = sol.peak.value;
-    v["static_peak_X"] = sol.peak.X;
-  }
-  v["kstar"] = sol.kstar.value;
-  if (sol.kstar.found) v["kstar_X"] = sol.kstar.X;
-  v["force_at_xmax"] = sol.res.F.back();
-  v["mass_error"] = sol.res.max_mass_error;
-  v["seconds"] = sol.seconds;
-  v["dx"] = job.opt.dx;
-  v["xmax"] = job.opt.Xmax;
   if (job.reform.dist) {
-    v["kinetic_force"] = sol.ss.F;
     v["kinetic_slope"] = sol.slope;
-    v["steady_rate"] = sol.ss.Gamma;
     v["attached_fraction"] = sol.ss.attached;
     v["lifetime"] = sol.ss.lifetime;
   }
