@@ -374,6 +374,18 @@ std::vector<double> MasterEquation::density() const
 
 /* ---------------------------------------------------------------------- */
 
+bool combine_richardson(MEResult &res, const MEResult &fine)
+{
+  if (fine.F.size() != 2 * res.F.size() - 1) return false;
+  for (size_t k = 0; k < res.F.size(); ++k) {
+    res.F[k] = (4.0 * fine.F[2 * k] - res.F[k]) / 3.0;
+    res.sd[k] = fine.sd[2 * k];
+    res.attached[k] = fine.attached[2 * k];
+    res.skew[k] = fine.skew[2 * k];
+  }
+  return true;
+}
+
 MEResult solve_master_equation(DistributionPtr Pc, DistributionPtr R, const MEOptions &opt)
 {
   if (!(opt.Xmax >= 0.0)) throw SpecError("master equation: xmax must be >= 0");

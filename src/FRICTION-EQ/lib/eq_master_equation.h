@@ -125,6 +125,12 @@ struct MEResult {
 
 MEResult solve_master_equation(DistributionPtr Pc, DistributionPtr R, const MEOptions &opt);
 
+// Richardson's combination of a solution at dx (res, changed) with one at
+// dx/2 (fine): F = (4 F_fine - F)/3 at the common points, sd, attached and
+// skewness those of the finer grid.  False (res unchanged) when fine is not
+// on the same X range at half the step.
+bool combine_richardson(MEResult &res, const MEResult &fine);
+
 struct SteadyState {
   double Gamma = 0.0;           // breaks per contact per unit slider displacement
   double F = 0.0;               // kinetic force F_k / (N k_c)

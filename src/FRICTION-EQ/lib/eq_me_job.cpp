@@ -574,14 +574,8 @@ MEResult solve_job(const MEJob &job)
     MEOptions half = opt;
     half.dx = 0.5 * opt.dx;
     const MEResult fine = solve_master_equation(job.threshold.dist, job.reform.dist, half);
-    if (fine.F.size() != 2 * res.F.size() - 1)
+    if (!combine_richardson(res, fine))
       throw SpecError("richardson: fine grid does not end at xmax (internal error)");
-    for (size_t k = 0; k < res.F.size(); ++k) {
-      res.F[k] = (4.0 * fine.F[2 * k] - res.F[k]) / 3.0;
-      res.sd[k] = fine.sd[2 * k];
-      res.attached[k] = fine.attached[2 * k];
-      res.skew[k] = fine.skew[2 * k];
-    }
   }
   return res;
 }

@@ -720,14 +720,8 @@ MEResult ThermalTransient::solve(double dx, double Xmax, bool richardson) const
   MEResult res = solve(dx, Xmax);
   if (!richardson) return res;
   const MEResult fine = solve(0.5 * dx, Xmax);
-  if (fine.F.size() != 2 * res.F.size() - 1)
+  if (!combine_richardson(res, fine))
     throw SpecError("richardson: xmax is not a whole number of steps dx");
-  for (size_t k = 0; k < res.F.size(); ++k) {
-    res.F[k] = (4.0 * fine.F[2 * k] - res.F[k]) / 3.0;
-    res.sd[k] = fine.sd[2 * k];
-    res.attached[k] = fine.attached[2 * k];
-    res.skew[k] = fine.skew[2 * k];
-  }
   res.max_mass_error = std::max(res.max_mass_error, fine.max_mass_error);
   return res;
 }
