@@ -648,14 +648,14 @@ void FixEQMeso::check_screened_grid()
           "blocks carried a state from a restart file or an earlier run: a grid is never changed "
           "under a state)";
   if (comm->me == 0)
-    error->warning(FLERR, "Fix {} eq/meso: grid {:.6g} ({}) resolves the screened thresholds x_s/(1 "
-                          "+ eps0) (Pi0 = {:.6g}, eps0 = Pi0/(1 - Pi0) = {:.6g}) with {:.3g} cells "
-                          "per standard deviation, fewer than {:.0f}: steady eps and F may miss the "
+    error->warning(FLERR, "Fix {} eq/meso: grid {:.6g} resolves the screened thresholds x_s/(1 + "
+                          "eps0) (Pi0 = {:.6g}, eps0 = Pi0/(1 - Pi0) = {:.6g}) with {:.3g} cells per "
+                          "standard deviation, fewer than {:.0f}: steady eps and F may miss the "
                           "steady state by more than 1e-4 (relative; the grid error is amplified by "
-                          "1 + eps0); grid {:.3g} (1/8 of the screened standard deviation, the "
-                          "default for this Pi0) reaches it",
-                   id, model->grid(), why, pi0_max, pi0_max / (1.0 - pi0_max),
-                   screened_sd / model->grid(), 1.0 / feq::MESO_GRID_SD_FRACTION, want);
+                          "1 + eps0); grid {:.3g} (1/8 of the screened standard deviation) reaches "
+                          "it, the default for this Pi0; this grid is {}",
+                   id, model->grid(), pi0_max, pi0_max / (1.0 - pi0_max),
+                   screened_sd / model->grid(), 1.0 / feq::MESO_GRID_SD_FRACTION, want, why);
 }
 
 // with screening, windows below window_safe (lib meso_min_window) leave
@@ -792,15 +792,17 @@ void FixEQMeso::check_normalization()
 }
 
 /* ----------------------------------------------------------------------
-   global restart: the stage (as fix eq/substrate's, FixEQBlocks) and the
-   grid of the stored blocks, so that a fix re-specified with the default
-   grid continues on the grid its blocks were made on (an explicit grid
-   must be that one: the signature names the grid keyword otherwise)
+   global restart: the stage (as fix eq/substrate's, FixEQBlocks) and,
+   when it was a default, the grid of the stored blocks (0: set by the
+   grid keyword), so that a fix re-specified with the default grid
+   continues on the default its blocks were made on; otherwise the grid
+   must be re-specified as it was (the signature names the grid keyword)
 ------------------------------------------------------------------------- */
 
 void FixEQMeso::write_restart(FILE *fp)
 {
-  EQRecord::write(lmp, fp, {stage, vstage, static_cast<double>(drive_flag), model->grid()},
+  EQRecord::write(lmp, fp,
+                  {stage, vstage, static_cast<double>(drive_flag), grid_default ? model->grid() : 0.0},
                   shaping);
 }
 
@@ -814,13 +816,14 @@ void FixEQMeso::restart(char *buf)
     return;
   }
   const double du = rec[6];
-  // the signature against the file's grid when the command has none
+  const bool adopt = grid_default && std::isfinite(du) && du > 0.0;
+  // the signature against the file's default grid when the command has none
   feq::Signature sig = shaping;
-  if (grid_default && std::isfinite(du) && du > 0.0)
+  if (adopt)
     for (size_t k = 0; k < sig.keywords.size(); k++)
       if (sig.keywords[k] == "grid") sig.hashes[k] = feq::hash52(EQRecord::number(du));
   EQRecord::read(lmp, this, buf, 4, sig, "blocks");
-  if (grid_default && du != model->grid()) {
+  if (adopt && du != model->grid()) {
     set_grid(du);
     if (comm->me == 0)
       utils::logmesg(lmp, "fix eq/meso: grid {:.6g} of the restart file's blocks; {} doubles per "
