@@ -210,8 +210,9 @@ def screened_error(tmp_path, nx, ny, nn, pi0, xmax, **var):
 def test_default_grid_reaches_the_screened_steady_state(tmp_path, nx, ny, nn, pi0, xmax):
     """With the default grid (no grid keyword) a chain and a square lattice
     at Pi0 = 0.93 and 0.97 reach the lattice solution of scr.eq08 to 1e-4
-    relative (measured 4e-7 ... 2e-6, what is left of the transient; on
-    sd/8 of the unscreened thresholds 4e-4 ... 1.7e-3): the fix chooses
+    relative (measured 2.4e-7 ... 1.9e-6, what is left of the transient;
+    at 600 x_c on sd/8 of the unscreened thresholds 4e-4 ... 1.7e-3,
+    examples/bench/README.md): the fix chooses
     1/8 of the screened standard deviation, sd (1 - Pi0), at the first
     run, and warns about nothing."""
     err, log = screened_error(tmp_path, nx, ny, nn, pi0, xmax)
