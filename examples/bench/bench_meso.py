@@ -15,10 +15,14 @@
    in.eq-meso-screen): a chain of 30 blocks and a 12 x 6 square lattice
    (nearest neighbours, Pi0 = 0.93 and 0.97) with a pinned stripe, eps of
    every block after 600 x_c against the self-consistent lattice solution
-   (eqtools.meso.screening_lattice), for the default grid and finer ones.
+   (eqtools.meso.screening_lattice), for the default grid (1/8 of the
+   screened sd, chosen by the fix), the former default (sd/8 of the
+   unscreened thresholds) and grids in between and finer; then the rate
+   window: the chain at Pi0 = 0.93, steps of x_c/211, windows around the
+   smallest safe one.
 
-  ./bench_meso.py                 both tables
-  ./bench_meso.py --part grid     only the first
+  ./bench_meso.py                 all tables
+  ./bench_meso.py --part grid     only the first (size, screen: the others)
 """
 import argparse
 import re
@@ -99,42 +103,65 @@ def size_table(out, sizes, ranks, dX=0.01, nsteps=300):
 SCREEN = ROOT / "examples" / "eq-meso" / "in.eq-meso-screen"
 
 
-def screen_table(out, grids=(0.0, 1e-6, 5e-7, 2e-7, 1e-7)):
-    sys.path.insert(0, str(ROOT / "unittest" / "python"))
+def screen_run(out, name, nx, ny, yb, nn, pi0, grid=0.0, window=0.0, dXc=0.0237, xmax_c=600):
+    """One run of in.eq-meso-screen: (error, time s, grid used, doubles
+    per block, the fix warned)."""
     from test_eq_meso import dump_rows, lattice_reference  # noqa: E402
+    xc, nlam = 1e-4, 100
+    kappa = pi0 / (nn * nlam)
+    d = Path(out) / f"screen_{nx}x{ny}_{pi0}_{grid:g}_{window:g}_{dXc:g}"
+    d.mkdir(parents=True, exist_ok=True)
+    t0 = time.time()
+    log = eqtools.run_lammps(SCREEN, {"nx": nx, "ny": ny, "nlam": nlam, "kappa": kappa,
+                                      "grid": grid, "window": window, "dX": dXc * xc,
+                                      "Xmax": xmax_c * xc, "yboundary": yb, "out": d}, cwd=d)
+    t = time.time() - t0
+    width = int(re.findall(r"(\d+) doubles per block", log)[-1])
+    du = float(re.search(r"; grid ([0-9.eE+-]+) \(", log).group(1))
+    chosen = re.search(r"grid ([0-9.eE+-]+) for the screened thresholds", log)
+    if chosen:
+        du = float(chosen.group(1))
+    a = dump_rows(d / "eps.dump")
+    sites = np.mod(np.c_[np.rint(a[:, 1] - a[:, 6]), np.rint(a[:, 2])], [nx, ny])
+    sliding = sites[:, 0] != 0
+    ref, _ = lattice_reference(sites, nx, ny, nlam, kappa, 1.01, sliding, periodic_y=(yb == "p"))
+    err = np.max(np.abs(a[:, 3] - ref)) / ref.max()
+    return err, t, du, width, "WARNING: Fix" in log
+
+
+def screen_table(out, grids=(0.0, 1.8042195912175807e-06, 1e-6, 5e-7, 2e-7, 1e-7)):
+    sys.path.insert(0, str(ROOT / "unittest" / "python"))
     # 600 x_c: the transient of Pi0 = 0.97 has decayed below 1e-9 (at
     # 150 x_c it is 5e-3); dX = 0.0237 x_c is commensurate with no grid
     # (a dX of a whole number of cells keeps the steps in phase with the
     # grid and hides its error)
-    xc, nlam, xmax, dX = 1e-4, 100, 0.06, 2.37e-6
+    xc, nlam, dXc = 1e-4, 100, 0.0237
     sd = 0.5 * xc / 12 ** 0.5    # thresholds uniform [0.75, 1.25] x_c
     print(f"\ntime against error under screening: {nlam} contacts per block, thresholds uniform "
-          f"[0.75, 1.25] x_c, dX = {dX / xc:g} x_c per step, {xmax / xc:g} x_c; error: max |eps - "
-          f"lattice solution| / max eps; grid 0: the default (sd/8 of the unscreened thresholds); "
-          f"screened sd = sd (1 - Pi0)")
-    print(f"{'lattice':>10} {'Pi0':>5} {'grid':>8} {'screened sd/grid':>16} {'doubles':>8} "
+          f"[0.75, 1.25] x_c, dX = {dXc:g} x_c per step, 600 x_c, window x_c; error: max |eps - "
+          f"lattice solution| / max eps; grid 0: the default (sd (1 - Pi0)/8, chosen by the fix); "
+          f"{grids[1]:.3g} = sd/8, the former default; screened sd = sd (1 - Pi0)")
+    print(f"{'lattice':>11} {'Pi0':>5} {'grid':>9} {'screened sd/grid':>16} {'doubles':>8} "
           f"{'error':>9} {'time s':>7}")
     for name, nx, ny, yb, nn in (("chain 30", 30, 1, "f", 2), ("square 12x6", 12, 6, "p", 4)):
         for pi0 in (0.93, 0.97):
-            kappa = pi0 / (nn * nlam)
             for grid in grids:
-                d = Path(out) / f"screen_{nx}x{ny}_{pi0}_{grid:g}"
-                d.mkdir(parents=True, exist_ok=True)
-                t0 = time.time()
-                log = eqtools.run_lammps(SCREEN, {"nx": nx, "ny": ny, "nlam": nlam, "kappa": kappa,
-                                                  "grid": grid, "dX": dX, "Xmax": xmax,
-                                                  "yboundary": yb, "out": d}, cwd=d)
-                t = time.time() - t0
-                width = int(re.search(r"\((\d+) doubles per block\)", log).group(1))
-                du = float(re.search(r"; grid ([0-9.eE+-]+) \(", log).group(1))
-                a = dump_rows(d / "eps.dump")
-                sites = np.mod(np.c_[np.rint(a[:, 1] - a[:, 6]), np.rint(a[:, 2])], [nx, ny])
-                sliding = sites[:, 0] != 0
-                ref, _ = lattice_reference(sites, nx, ny, nlam, kappa, 1.01, sliding,
-                                           periodic_y=(yb == "p"))
-                err = np.max(np.abs(a[:, 3] - ref)) / ref.max()
-                print(f"{name:>10} {pi0:>5.2f} {du:>8.2g} {sd * (1 - pi0) / du:>16.2f} {width:>8d} "
+                err, t, du, width, _ = screen_run(out, name, nx, ny, yb, nn, pi0, grid=grid)
+                label = "default" if grid == 0.0 else f"{du:.3g}"
+                print(f"{name:>11} {pi0:>5.2f} {label:>9} {sd * (1 - pi0) / du:>16.2f} {width:>8d} "
                       f"{err:>9.2e} {t:>7.1f}", flush=True)
+
+
+def window_table(out, windows=(0.2, 0.5, 0.72, 1.0)):
+    sys.path.insert(0, str(ROOT / "unittest" / "python"))
+    dXc = 1.0 / 211
+    print(f"\nthe rate window under screening: chain 30, Pi0 = 0.93, default grid, dX = x_c/211, "
+          f"100 x_c; smallest safe window 0.015 x_c (x_c/sd)^2 = 0.72 x_c")
+    print(f"{'window/x_c':>10} {'error':>9} {'warned':>7} {'time s':>7}")
+    for w in windows:
+        err, t, _, _, warned = screen_run(out, "chain 30", 30, 1, "f", 2, 0.93, window=w * 1e-4,
+                                          dXc=dXc, xmax_c=100)
+        print(f"{w:>10.3g} {err:>9.2e} {str(warned):>7} {t:>7.1f}", flush=True)
 
 
 def main():
@@ -154,6 +181,7 @@ def main():
                    [int(v) for v in a.ranks.split(",")])
     if a.part in ("screen", "all"):
         screen_table(out)
+        window_table(out)
     print(f"({time.time() - t0:.0f} s)")
 
 

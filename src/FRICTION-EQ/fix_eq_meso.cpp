@@ -50,6 +50,7 @@
 #include "eq_lammps_util.h"
 #include "eq_record_lammps.h"
 #include "eq_meso.h"
+#include "eq_record.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -67,8 +68,6 @@ const char *KEYWORDS =
 // global vector: sum F, <Gamma>, <eps>, <X>, sum drive force, N, X_s,
 // normalization error of the last check, largest Pi0
 enum { V_FORCE, V_RATE, V_EPS, V_DISP, V_FDRIVE, V_COUNT, V_STAGE, V_NORM, V_PI0, NVEC };
-// the default grid spacing, in standard deviations of the thresholds
-constexpr double GRID_DEFAULT_SD = 0.125;
 // a block's Q may lose this much probability (rounding) before it is an error
 constexpr double NORM_TOLERANCE = 1e-9;
 constexpr int CHECK_DEFAULT = 1000;
@@ -89,7 +88,8 @@ struct FixEQMeso::Args {
 FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
     FixEQBlocks(lmp, narg, arg), nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
     lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), threshold_sd(0.0),
-    grid_warned(0), pi0_local(0.0),
+    grid_warned(0), grid_default(0), grid_chosen(0), window_safe(0.0), window_warned(0),
+    pi0_local(0.0),
     list_stamp(-1), screened(0), ran(0), restored(0), comm_mode(0), check_every(CHECK_DEFAULT), norm_max(0.0),
     neval(0), reduced_eval(-1), out(nullptr)
 {
@@ -107,7 +107,10 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
   }
   const bigint nblocks = check(a);
   xc = a.threshold.dist->mean();
-  if (window == 0.0) window = xc;
+  // with screening, windows below window_safe leave the steady state
+  // unstable (lib meso_min_window): the default is x_c or that
+  window_safe = feq::meso_min_window(*a.threshold.dist);
+  if (window == 0.0) window = screen_flag && kappa > 0.0 ? std::max(xc, window_safe) : xc;
   stage = a.stage0;
 
   if (comm->me == 0)
@@ -134,6 +137,9 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
   respa_level_support = 1;
   comm_forward = 2;
   peratom_setup(M_HEAD + model->width(), NOUT);
+  // the default grid is chosen for the screening at the first run: the
+  // width of a block's state may change then (after comm's init)
+  if (grid_default && screen_flag) maxexchange_dynamic = 1;
 
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
@@ -229,10 +235,11 @@ void FixEQMeso::parse_screen(const std::vector<std::string> &args, size_t &iarg)
 // depends on (restart check)
 void FixEQMeso::make_model(Args &a)
 {
-  const bool grid_default = a.du == 0.0;
+  grid_default = a.du == 0.0 ? 1 : 0;
   const double sd = std::sqrt(std::max(0.0, a.threshold.dist->variance()));
   threshold_sd = sd;
-  if (grid_default) a.du = GRID_DEFAULT_SD * sd;
+  thresholds = a.threshold.dist;
+  if (grid_default) a.du = feq::meso_default_grid(*a.threshold.dist);
   try {
     if (grid_default && !(a.du > 0.0)) throw feq::GridError("grid: zero width");
     model.reset(new feq::MesoModel(a.threshold.dist, a.reform.dist, a.du, a.crossing, a.start));
@@ -338,6 +345,8 @@ void FixEQMeso::init_block(int i)
 void FixEQMeso::setup(int vflag)
 {
   ran = 1;
+  if (!grid_chosen && grid_default && screen_flag) choose_grid();
+  grid_chosen = 1;
   if (utils::strmatch(update->integrate_style, "^verlet")) {
     post_force(vflag);
   } else {
@@ -504,18 +513,50 @@ void FixEQMeso::screening()
 {
   const bool rebuilt = neighbor->ago == 0 || list_stamp < 0;
   if (rebuilt) partners();
+  gather_columns(true);
+  pi0_local = lattice_sums(true, rebuilt);
+  screened = 1;
+  if (rebuilt) {
+    check_screened_grid();
+    check_window();
+  }
+}
+
+// the rate (rates: else 0) and the displacement of every local block into
+// cbuf, and to the ghosts; before a run's first step the displacements of
+// the positions now (the atoms may have moved since the last evaluation)
+void FixEQMeso::gather_columns(bool rates)
+{
   const int nlocal = atom->nlocal;
   if (static_cast<int>(cbuf.size()) < 2 * atom->nmax)
     cbuf.resize(2 * static_cast<size_t>(atom->nmax));
   const int *mask = atom->mask;
+  const EQUtil::Unwrap unwrap(atom, domain, idir);
   for (int i = 0; i < nlocal; i++) {
     const bool block = (mask[i] & groupbit) != 0;
-    cbuf[2 * i] = block ? state[i][M_RATE] : 0.0;
-    cbuf[2 * i + 1] = block ? state[i][M_DISP] : 0.0;
+    double X = 0.0;
+    if (block && rates) {
+      X = state[i][M_DISP];
+    } else if (block && state[i][M_FLAG] != 0.0) {
+      double site = state[i][M_SITE];
+      X = unwrap.displacement(i, site, state[i][M_DISP]);
+    }
+    cbuf[2 * i] = block && rates ? state[i][M_RATE] : 0.0;
+    cbuf[2 * i + 1] = X;
   }
   comm_mode = COMM_RATE;
   EQCompat::forward_comm(comm, static_cast<Fix *>(this));
+}
 
+// over the partners of every local block at the distance of the sites:
+// Pi0 = sum_m Pi_mn, and (eps_update) eps_n = x_c sum_m Gamma_m Pi_mn
+// from the rates in cbuf; returns this rank's largest Pi0.  After a list
+// build (rebuilt) the largest Pi0 of all ranks goes into pi0_max (>= 1:
+// an error)
+double FixEQMeso::lattice_sums(bool eps_update, bool rebuilt)
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
   double **x = atom->x;
   const int d = idir;
   const double cutsq = rcut * rcut * (1.0 + 2e-12);
@@ -546,8 +587,10 @@ void FixEQMeso::screening()
       pi0 += pi;
       e += pi * cbuf[2 * j];
     }
-    state[i][M_EPS] = out[i][M_EPS] = xc * e;
-    eps_sum += xc * e;
+    if (eps_update) {
+      state[i][M_EPS] = out[i][M_EPS] = xc * e;
+      eps_sum += xc * e;
+    }
     if (pi0 > pimax) {
       pimax = pi0;
       iworst = i;
@@ -563,10 +606,8 @@ void FixEQMeso::screening()
                       "difference", atom->tag[ibig], atom->tag[jbig], dxbig, neighbor->skin);
   // the global mean of eps is that of the per-atom column: the screening
   // of the next step
-  local_sum[S_EPS] = eps_sum;
+  if (eps_update) local_sum[S_EPS] = eps_sum;
   // Pi0 = sum_m Pi_mn < 1, checked after every list build (one reduction)
-  pi0_local = pimax;
-  screened = 1;
   if (rebuilt) {
     struct {
       double value;
@@ -581,27 +622,127 @@ void FixEQMeso::screening()
                         "screened solution (eps0 = Pi0/(1 - Pi0) diverges); lower kappa ({}) or "
                         "rcut ({})", pi0_max, static_cast<tagint>(who), kappa, rcut);
     }
-    check_screened_grid();
   }
+  return pimax;
 }
 
 // with screening the thresholds that matter are x_s/(1 + eps), narrower by
 // 1 + eps0 = 1/(1 - Pi0) in the steady state: a grid that resolves them
 // with fewer than 1/MESO_GRID_SD_FRACTION cells per standard deviation
-// (the limit that is an error without screening) is reported once
+// (the limit that is an error without screening) is reported once, with
+// why the fix is on it and the grid the default would choose
 void FixEQMeso::check_screened_grid()
 {
   const double screened_sd = threshold_sd * (1.0 - pi0_max);
   if (grid_warned || !(model->grid() > feq::MESO_GRID_SD_FRACTION * screened_sd)) return;
   grid_warned = 1;
+  const double want = feq::meso_default_grid(*thresholds, pi0_max);
+  std::string why;
+  if (!grid_default)
+    why = "set by the grid keyword";
+  else if (want < model->min_grid())
+    why = fmt::format("the finest grid within the limit of {} doubles per block",
+                      feq::MESO_MAX_WIDTH);
+  else
+    why = "the default grid of the blocks' state when the screening was first computed (the "
+          "blocks carried a state from a restart file or an earlier run: a grid is never changed "
+          "under a state)";
   if (comm->me == 0)
-    error->warning(FLERR, "Fix {} eq/meso: grid {:.6g} resolves the screened thresholds x_s/(1 + eps0) "
-                          "(Pi0 = {:.6g}, eps0 = Pi0/(1 - Pi0) = {:.6g}) with {:.3g} cells per standard "
-                          "deviation, fewer than {:.0f}: steady eps and F carry a grid error that the "
-                          "screening amplifies by 1 + eps0; grid {:.3g} (1/8 of the screened standard "
-                          "deviation) resolves them as the default grid resolves unscreened thresholds",
-                   id, model->grid(), pi0_max, pi0_max / (1.0 - pi0_max), screened_sd / model->grid(),
-                   1.0 / feq::MESO_GRID_SD_FRACTION, GRID_DEFAULT_SD * screened_sd);
+    error->warning(FLERR, "Fix {} eq/meso: grid {:.6g} resolves the screened thresholds x_s/(1 + "
+                          "eps0) (Pi0 = {:.6g}, eps0 = Pi0/(1 - Pi0) = {:.6g}) with {:.3g} cells per "
+                          "standard deviation, fewer than {:.0f}: steady eps and F may miss the "
+                          "steady state by more than 1e-4 (relative; the grid error is amplified by "
+                          "1 + eps0); grid {:.3g} (1/8 of the screened standard deviation) reaches "
+                          "it, the default for this Pi0; this grid is {}",
+                   id, model->grid(), pi0_max, pi0_max / (1.0 - pi0_max),
+                   screened_sd / model->grid(), 1.0 / feq::MESO_GRID_SD_FRACTION, want, why);
+}
+
+// with screening, windows below window_safe (lib meso_min_window) leave
+// the steady state of a screened lattice unstable: reported once
+void FixEQMeso::check_window()
+{
+  if (window_warned || !(pi0_max > 0.0) || !(window < window_safe)) return;
+  window_warned = 1;
+  if (comm->me == 0)
+    error->warning(FLERR, "Fix {} eq/meso: window {:.6g} is below {:.6g} = {} <x_s> (<x_s>/sd)^2 "
+                          "of the thresholds, the smallest window with which screened blocks are "
+                          "known to reach their steady state: with smaller windows it can be "
+                          "unstable (the blocks break in synchronized bursts, eps far from its "
+                          "steady value, whatever the time step and grid); set window {:.6g} or more",
+                   id, window, window_safe, feq::MESO_WINDOW_COEFF, window_safe);
+}
+
+/* ----------------------------------------------------------------------
+   the default grid for the screened thresholds, at the setup of the first
+   run: 1/8 of their standard deviation sd (1 - Pi0) with the largest Pi0
+   of the lattice (the partners of the list just built), not finer than
+   the state size allows.  Only while every block is fresh (its state is
+   that of a block just defined, on any rank): a fresh block is the same
+   on any grid, so it is re-made on the new one exactly; a block with a
+   history keeps its grid (grids are never mixed, a state never
+   interpolated), and check_screened_grid() warns if it is too coarse
+------------------------------------------------------------------------- */
+
+void FixEQMeso::choose_grid()
+{
+  partners();
+  gather_columns(false);
+  lattice_sums(false, true);
+  const double want = std::max(feq::meso_default_grid(*thresholds, pi0_max), model->min_grid());
+  if (!(want > 0.0) || want == model->grid() || !all_fresh()) return;
+  set_grid(want);
+  if (comm->me == 0)
+    utils::logmesg(lmp, "fix eq/meso: grid {:.6g} for the screened thresholds (Pi0 = {:.6g}: {} of "
+                        "their standard deviation sd (1 - Pi0)); {} doubles per block\n",
+                   model->grid(), pi0_max,
+                   want > feq::meso_default_grid(*thresholds, pi0_max)
+                       ? std::string("the finest grid within the state size limit, coarser than 1/8")
+                       : std::string("1/8"),
+                   M_HEAD + model->width());
+}
+
+// every set-up block holds the state of a block just defined (at X = 0)
+bool FixEQMeso::all_fresh()
+{
+  std::vector<double> made(model->width());
+  model->init(made.data(), 0.0);
+  const size_t bytes = made.size() * sizeof(double);
+  int mine = 1;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((atom->mask[i] & groupbit) && state[i][M_FLAG] != 0.0 &&
+        memcmp(state[i] + M_HEAD, made.data(), bytes) != 0)
+      mine = 0;
+  int all = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, world);
+  return all != 0;
+}
+
+// the blocks' master equation on the grid du: the state of every local
+// block re-made fresh on it (its site and outputs kept), the per-atom
+// arrays re-sized, the restart signature of the grid updated
+void FixEQMeso::set_grid(double du)
+{
+  try {
+    std::unique_ptr<feq::MesoModel> m = model->regrid(du);
+    model = std::move(m);
+  } catch (const feq::SpecError &e) {
+    error->all(FLERR, "Fix {} eq/meso {}", id, e.what());
+  }
+  const int width = M_HEAD + model->width();
+  double **made = nullptr;
+  memory->create(made, std::max(atom->nmax, 1), width, "eq:state");
+  for (int i = 0; i < atom->nlocal; i++) {
+    memcpy(made[i], state[i], M_HEAD * sizeof(double));
+    memset(made[i] + M_HEAD, 0, model->width() * sizeof(double));
+    if (made[i][M_FLAG] != 0.0) model->init(made[i] + M_HEAD, 0.0);
+  }
+  memory->destroy(state);
+  state = made;
+  ncol = width;
+  maxexchange = ncol;
+  for (size_t k = 0; k < shaping.keywords.size(); k++)
+    if (shaping.keywords[k] == "grid") shaping.hashes[k] = feq::hash52(EQRecord::number(du));
 }
 
 // rate and displacement of each block
@@ -648,6 +789,51 @@ void FixEQMeso::check_normalization()
                       "stretches (|int Q - 1| = {:.3g} > {}); the state is corrupt or the grid ({}) "
                       "is too coarse for the motion", who, worst, NORM_TOLERANCE, model->grid());
   MPI_Allreduce(&worst, &norm_max, 1, MPI_DOUBLE, MPI_MAX, world);
+}
+
+/* ----------------------------------------------------------------------
+   global restart: the stage (as fix eq/substrate's, FixEQBlocks) and,
+   when it was a default, the grid of the stored blocks (0: set by the
+   grid keyword), so that a fix re-specified with the default grid
+   continues on the default its blocks were made on; otherwise the grid
+   must be re-specified as it was (the signature names the grid keyword)
+------------------------------------------------------------------------- */
+
+void FixEQMeso::write_restart(FILE *fp)
+{
+  EQRecord::write(lmp, fp,
+                  {stage, vstage, static_cast<double>(drive_flag), grid_default ? model->grid() : 0.0},
+                  shaping);
+}
+
+void FixEQMeso::restart(char *buf)
+{
+  const double *rec = reinterpret_cast<const double *>(buf);
+  // records of earlier versions have the stage only (3 values): their grid
+  // is the command's
+  if (!(rec[0] == feq::RECORD_MAGIC && rec[1] == feq::RECORD_FORMAT && rec[2] == 4.0)) {
+    FixEQBlocks::restart(buf);
+    return;
+  }
+  const double du = rec[6];
+  const bool adopt = grid_default && std::isfinite(du) && du > 0.0;
+  // the signature against the file's default grid when the command has none
+  feq::Signature sig = shaping;
+  if (adopt)
+    for (size_t k = 0; k < sig.keywords.size(); k++)
+      if (sig.keywords[k] == "grid") sig.hashes[k] = feq::hash52(EQRecord::number(du));
+  EQRecord::read(lmp, this, buf, 4, sig, "blocks");
+  if (adopt && du != model->grid()) {
+    set_grid(du);
+    if (comm->me == 0)
+      utils::logmesg(lmp, "fix eq/meso: grid {:.6g} of the restart file's blocks; {} doubles per "
+                          "block\n", du, M_HEAD + model->width());
+  }
+  // the stage: FixEQBlocks' record of 3 values and the signature
+  std::vector<double> stage_rec(rec, rec + 6);
+  stage_rec[2] = 3.0;
+  stage_rec.insert(stage_rec.end(), rec + 7, rec + 8 + sig.hashes.size());
+  FixEQBlocks::restart(reinterpret_cast<char *>(stage_rec.data()));
 }
 
 /* ----------------------------------------------------------------------

@@ -67,6 +67,8 @@ class FixEQMeso : public FixEQBlocks {
   double compute_scalar() override;
   double compute_vector(int) override;
   int modify_param(int, char **) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
   void unpack_restart(int, int) override;
   void grow_arrays(int) override;
   void copy_arrays(int, int, int) override;
@@ -104,7 +106,14 @@ class FixEQMeso : public FixEQBlocks {
   std::vector<int> first, pj;
   double pi0_max;      // largest sum_m Pi_mn over the blocks at the last list build
   double threshold_sd;    // standard deviation of the thresholds (the grid's scale)
+  feq::DistributionPtr thresholds;
   int grid_warned;     // the warning on a grid too coarse for the screened thresholds was given
+  // the grid: the user's (grid keyword), or the default, chosen for the
+  // screened thresholds at the setup of the first run (grid_chosen) while
+  // every block is fresh; restart files carry the grid of their blocks
+  int grid_default, grid_chosen;
+  double window_safe;    // smallest safe window with screening (lib meso_min_window)
+  int window_warned;
   double pi0_local;    // largest sum_m Pi_mn of this rank's blocks at the last step
   bigint list_stamp;   // neighbor->ncalls of the partners (-1: none)
   int screened;        // the screening has been computed (pi0_local holds)
@@ -112,6 +121,12 @@ class FixEQMeso : public FixEQBlocks {
   int restored;        // blocks came from a restart file
   void outputs_before_run();
   void check_screened_grid();
+  void check_window();
+  void choose_grid();
+  void set_grid(double du);
+  bool all_fresh();
+  void gather_columns(bool rates);
+  double lattice_sums(bool eps_update, bool rebuilt);
   int comm_mode;
   std::vector<double> cbuf;    // forward communication: rate and displacement per atom
   // normalization check of the blocks' Q every check_every steps

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -722,4 +723,79 @@ TEST(MesoModel, Width)
   // held contacts: 2 (2K + 2) more, K = 30 for R = uniform(-0.3, 0.2)
   const MesoModel h(make_realistic(1.0), make_uniform(-0.3, 0.2), 0.01);
   EXPECT_EQ(h.width(), 16 + h.anchors() + 2 * (2 * 30 + 2));
+}
+
+/* ----------------------------------------------------------------------
+   5. the default grid and window under screening
+------------------------------------------------------------------------- */
+
+// The default grid is 1/8 of the standard deviation of the thresholds
+// that matter, x_s (1 - Pi0) with screening: sd of uniform [0.75, 1.25]
+// is 0.5/sqrt(12), of realistic 1 (2 - 9 pi/16)^(1/2) (its moments 3
+// sqrt(pi)/4 and 2).  Pi0 outside [0, 1) is an error of the caller.
+TEST(MesoModel, DefaultGridOfTheScreenedThresholds)
+{
+  const double sdu = 0.5 / std::sqrt(12.0), sdr = std::sqrt(2.0 - 9.0 * M_PI / 16.0);
+  EXPECT_NEAR(meso_default_grid(*make_uniform(0.75, 1.25)), sdu / 8.0, 1e-15);
+  EXPECT_NEAR(meso_default_grid(*make_uniform(0.75, 1.25), 0.93), 0.07 * sdu / 8.0, 1e-15);
+  EXPECT_NEAR(meso_default_grid(*make_realistic(1.0), 0.97), 0.03 * sdr / 8.0, 1e-10);
+  EXPECT_THROW(meso_default_grid(*make_realistic(1.0), 1.0), std::invalid_argument);
+  EXPECT_THROW(meso_default_grid(*make_realistic(1.0), -0.1), std::invalid_argument);
+  EXPECT_THROW(meso_default_grid(*make_realistic(1.0), NAN), std::invalid_argument);
+}
+
+// Why the screened default: a block screened by a constant eps0 = Pi0/(1 -
+// Pi0) is exactly the block with thresholds x_s (1 - Pi0)
+// (ScreeningEqualsScaledThresholds), so on the grid du0 (1 - Pi0), moved
+// by increments scaled by (1 - Pi0), it is the unscreened block on du0
+// scaled by (1 - Pi0): its error of F against the exact renewal solution
+// of the screened thresholds is (1 - Pi0) times the unscreened one (up to
+// the survival tables, tabulated on y = (1 + eps) u with du/4 in both:
+// the same points).  On the unscreened default grid du0 itself the
+// screened thresholds are resolved with 8 (1 - Pi0) cells per sd: at Pi0
+// = 0.93 the relative error is about (1/0.07)^2 = 200 times larger (second
+// order).
+TEST(MesoModel, ScreenedDefaultGridKeepsTheRelativeError)
+{
+  const double pi0 = 0.93, eps0 = pi0 / (1.0 - pi0), s = 1.0 - pi0;
+  const double du0 = meso_default_grid(*make_uniform(0.75, 1.25));
+  const double du1 = meso_default_grid(*make_uniform(0.75, 1.25), pi0);
+  EXPECT_NEAR(du1, s * du0, 1e-16);
+  const double e0 = error_vs_renewal(du0, 0.37 * du0, 8.0);
+  const double e1 = error_vs_renewal(du1, 0.37 * du1, 8.0 * s, eps0) / s;
+  const double ecoarse = error_vs_renewal(du0, 0.37 * du1, 8.0 * s, eps0) / s;
+  EXPECT_GT(e0, 1e-5);    // a grid error, not rounding
+  EXPECT_NEAR(e1, e0, 1e-9 * e0 + 1e-12);
+  EXPECT_GT(ecoarse, 0.25 * e0 / (s * s));
+}
+
+// The smallest safe window: MESO_WINDOW_COEFF <x_s> (<x_s>/sd)^2, 0.72 for
+// uniform [0.75, 1.25] (sd^2 = 1/48), 1.5 for gaussian(1, 0.1) (its
+// truncation at 0 lies 10 sd below the mean).
+TEST(MesoModel, SmallestSafeWindow)
+{
+  EXPECT_NEAR(meso_min_window(*make_uniform(0.75, 1.25)), 0.015 * 48.0, 1e-13);
+  EXPECT_NEAR(meso_min_window(*make_gaussian(1.0, 0.1, 0.0)), 1.5, 1e-9);
+  // scale invariance: x_s -> c x_s scales the window by c
+  EXPECT_NEAR(meso_min_window(*make_uniform(0.75e-4, 1.25e-4)), 0.72e-4, 1e-17);
+}
+
+// regrid: the same model on another grid, bit for bit what the
+// constructor makes (the same width and the same F along a path); a
+// grid the constructor refuses is refused
+TEST(MesoModel, RegridEqualsConstruction)
+{
+  const DistributionPtr Pc = make_realistic(1.0), R = make_gaussian(0.05, 0.1, -INF);
+  const MesoModel m(Pc, R, 0.02);
+  const std::unique_ptr<MesoModel> r = m.regrid(0.013);
+  const MesoModel c(Pc, R, 0.013);
+  ASSERT_EQ(r->width(), c.width());
+  EXPECT_EQ(r->grid(), 0.013);
+  Block a(*r, 0.0), b(c, 0.0);
+  for (int i = 1; i <= 500; ++i) {
+    a.go(0.011 * i, 0.2);
+    b.go(0.011 * i, 0.2);
+  }
+  EXPECT_EQ(std::memcmp(a.s.data(), b.s.data(), a.s.size() * sizeof(double)), 0);
+  EXPECT_THROW(m.regrid(0.5), GridError);
 }

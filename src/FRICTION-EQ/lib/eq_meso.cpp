@@ -114,6 +114,25 @@ void fit_interval(double *c, double f0, double f1, double f2, double f3, double 
 
 /* ---------------------------------------------------------------------- */
 
+double meso_default_grid(const Distribution &Pc, double pi0)
+{
+  if (!(pi0 >= 0.0 && pi0 < 1.0))
+    throw std::invalid_argument("meso_default_grid: Pi0 must be in [0, 1), got " + fmt(pi0));
+  return MESO_GRID_DEFAULT_SD * std::sqrt(std::max(0.0, Pc.variance())) * (1.0 - pi0);
+}
+
+double meso_min_window(const Distribution &Pc)
+{
+  const double xc = Pc.mean(), sd = std::sqrt(std::max(0.0, Pc.variance()));
+  if (!(sd > 0.0)) return std::numeric_limits<double>::infinity();
+  return MESO_WINDOW_COEFF * xc * (xc / sd) * (xc / sd);
+}
+
+std::unique_ptr<MesoModel> MesoModel::regrid(double du_new) const
+{
+  return std::unique_ptr<MesoModel>(new MesoModel(Pc, R, du_new, crossing, start));
+}
+
 double MesoModel::max_grid(const Distribution &Pc)
 {
   const double var = Pc.variance();

@@ -160,6 +160,7 @@
 #include "eq_distribution.h"
 #include "eq_master_equation.h"    // Crossing, MEStart
 
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -169,6 +170,40 @@ namespace feq {
 // MESO_MAX_WIDTH doubles (see the header comment)
 constexpr double MESO_GRID_SD_FRACTION = 0.25;
 constexpr int MESO_MAX_WIDTH = 65536;
+
+// The default grid: MESO_GRID_DEFAULT_SD standard deviations of the
+// thresholds that matter.  With screening the forces are scaled by
+// 1 + eps, in the steady state of a lattice by 1 + eps0 = 1/(1 - Pi0)
+// (Pi0 = sum_m Pi_mn), so the thresholds that matter are x_s (1 - Pi0),
+// and so is their standard deviation: meso_default_grid(Pc, Pi0) =
+// MESO_GRID_DEFAULT_SD sd(P_c) (1 - Pi0), the same number of cells per
+// screened standard deviation (8) as the unscreened default has per
+// standard deviation.  0 for thresholds of zero width; throws
+// std::invalid_argument unless 0 <= pi0 < 1.  Measured (fix eq/meso,
+// examples/bench/README.md): chain and square lattice, uniform
+// thresholds, Pi0 = 0.93 and 0.97, after 600 x_c: error of the steady
+// eps 1.1e-6 ... 2.5e-6 on this grid, 4e-4 ... 1.7e-3 on sd/8 of the
+// unscreened thresholds; the cost per unit of sliding grows as
+// 1/(1 - Pi0).
+constexpr double MESO_GRID_DEFAULT_SD = 0.125;
+double meso_default_grid(const Distribution &Pc, double pi0 = 0.0);
+
+// The smallest safe rate window of screened blocks (fix eq/meso keyword
+// 'window'), MESO_WINDOW_COEFF <x_s> (<x_s>/sd)^2.  The screening feeds
+// the windowed breaking rate back into the breaking: for a window below
+// a critical one the steady state of a screened lattice is unstable and
+// the blocks break in synchronized bursts instead (eps far from the
+// steady value, relaxation oscillations).  The critical window is a
+// property of the (continuous) model, not of the time step or the grid:
+// measured on a chain with a pinned block, steps of x_c/211 and grids of
+// 4 cells per screened sd, Pi0 = 0.05 ... 0.97, it is at most
+// 0.4-0.5 x_c for uniform [0.75, 1.25] x_c (sd/x_c = 0.144), 0.5-1 x_c
+// for gaussian sd/x_c = 0.1 and 0.05-0.2 x_c for gaussian sd/x_c = 0.25,
+// i.e. 0.0083-0.01 x_c (x_c/sd)^2; larger steps are more stable.  The
+// coefficient 0.015 leaves a margin of 1.45 or more over the unstable
+// windows measured.
+constexpr double MESO_WINDOW_COEFF = 0.015;
+double meso_min_window(const Distribution &Pc);
 
 // the grid spacing du is unusable for the thresholds (its message starts
 // with "grid:"); fix eq/meso names its default grid as the cause when the
@@ -193,6 +228,10 @@ class MesoModel {
   // stays below MESO_MAX_WIDTH
   static double max_grid(const Distribution &Pc);
   double min_grid() const;
+  // the same model (thresholds, R, crossing, start) on the grid du: a
+  // block's state of one grid is not a state of the other (init() a fresh
+  // block on it); throws as the constructor
+  std::unique_ptr<MesoModel> regrid(double du) const;
 
   int width() const { return nwidth; }    // doubles per block state
 
