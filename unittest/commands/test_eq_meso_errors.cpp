@@ -129,7 +129,7 @@ TEST_F(EQMesoErrors, ScreeningWithoutSolution)
 // a grid of 0.002 (5 cells) none
 TEST_F(EQMesoErrors, GridTooCoarseForTheScreening)
 {
-  HIDE_OUTPUT([&] { fix(std::string("100 1.0 ") + T + " screen 0.002325 1.0 1.01"); });
+  HIDE_OUTPUT([&] { fix(std::string("100 1.0 ") + T + " screen 0.002325 1.0 1.01 grid 0.0180422"); });
   ::testing::internal::CaptureStdout();
   command("run 0 post no");
   command("run 0 post no");
