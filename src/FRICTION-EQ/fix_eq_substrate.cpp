@@ -112,7 +112,7 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
   scalar_flag = 1;
   vector_flag = 1;
-  size_vector = NVEC;
+  size_vector = thermal_flag ? NVEC : NVEC - 1;    // the hop count only with thermal
   global_freq = 1;
   extscalar = 1;
   extvector = -1;
