@@ -55,17 +55,21 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 namespace {
-const char *KEYWORDS = "dir, drive, stage, reverse, crossing, integrator, disorder";
+const char *KEYWORDS =
+    "dir, drive, stage, reverse, crossing, integrator, disorder, thermal, barrier, seed";
 const char *SHAPES = "sawtooth, smooth, table";
-// global vector: f = K X_s, X_s, v_stage, <v>, <u>, sum F_s, sum drive, E_sub, E_drive, N
-enum { V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE, V_COUNT, NVEC };
+// global vector: f = K X_s, X_s, v_stage, <v>, <u>, sum F_s, sum drive, E_sub, E_drive, N,
+// thermal hops
+enum {
+  V_F, V_STAGE, V_VSTAGE, V_VEL, V_DISP, V_FSUB, V_FDRIVE, V_ESUB, V_EDRIVE, V_COUNT, V_HOPS, NVEC
+};
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
 
 FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
     FixEQBlocks(lmp, narg, arg), rev_break(0), exact(1), integrator(Integrator::AUTO), window(0.5),
-    dseed(0), njump(0), jump_step(-1), jump_tag(0), jump_size(0.0), neval(0), reduced_eval(-1),
+    dseed(0), thermal_flag(0), tseed(0), njump(0), jump_step(-1), jump_tag(0), jump_size(0.0), neval(0), reduced_eval(-1),
     chained(0), fsub_valid(0), ran(0), restored(0)
 {
   sitecol = SITE;
@@ -74,6 +78,7 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
   for (double &v : global_sum) v = 0.0;
   const double stage0 = parse(narg, arg);
   const bigint nblocks = check(arg, stage0);
+  setup_thermal(arg);
   stage = stage0;
   // what the stored blocks are made with (restart check): their k_c, the
   // substrate (the well origins are multiples of its period), the
@@ -98,18 +103,24 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
                                             kdrive, stage0, vstage)
                               : std::string("no driving springs"),
                    disorder.dist ? "; disorder " + disorder.text : std::string());
+  if (thermal_flag && comm->me == 0)
+    utils::logmesg(lmp, "fix eq/substrate: thermal hops: {}; seed {}; theta = k_B T / eps_a = {:.6g}, "
+                        "hop rate at zero stretch {:.6g}\n",
+                   tkw.text().empty() ? std::string("T = 0") : tkw.text(), tseed,
+                   hopper.thermal().params().theta, hopper.rate(0.0, 1.0));
 
   restart_global = 1;
   scalar_flag = 1;
   vector_flag = 1;
-  size_vector = NVEC;
+  size_vector = thermal_flag ? NVEC : NVEC - 1;    // the hop count only with thermal
   global_freq = 1;
   extscalar = 1;
   extvector = -1;
-  extlist = new int[NVEC]{0, 0, 0, 0, 0, 1, 1, 1, 1, 1};
+  extlist = new int[NVEC]{0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1};
   energy_global_flag = 1;
   respa_level_support = 1;
-  peratom_setup(NCOL, NCOL);
+  const int ncolumns = thermal_flag ? static_cast<int>(NCOL_THERMAL) : static_cast<int>(NCOL);
+  peratom_setup(ncolumns, ncolumns);
 
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
@@ -147,6 +158,20 @@ double FixEQSubstrate::parse(int narg, char **arg)
       else if (kw == "reverse")
         rev_break = feq::parse_choice(args, iarg, kw, {"periodic", "break"});
       else if (kw == "disorder") parse_disorder(args, iarg);
+      else if (kw == "aging" || kw == "delay" || kw == "rest")
+        throw feq::SpecError("keyword '" + kw + "' is one of fix eq/contacts (the age and the "
+                             "re-formation delay of a contact): a block of this fix re-enters "
+                             "the next well at once and does not age; allowed here: thermal, "
+                             "barrier (with seed)");
+      else if (feq::parse_thermal_keyword(kw, args, iarg, number, tkw))
+        thermal_flag |= kw == "thermal";
+      else if (kw == "seed") {
+        if (iarg >= args.size()) throw feq::SpecError("seed: missing value");
+        const std::string &tok = args[iarg++];
+        if (!utils::is_integer(tok) ||
+            (tseed = EQUtil::bnumeric(lmp, "Fix eq/substrate seed", tok)) <= 0)
+          throw feq::SpecError("seed must be a positive integer (got '" + tok + "')");
+      }
       else throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
     }
   } catch (const feq::SpecError &e) {
@@ -197,6 +222,36 @@ void FixEQSubstrate::parse_disorder(const std::vector<std::string> &args, size_t
   if (!utils::is_integer(tok) ||
       (dseed = EQUtil::bnumeric(lmp, "Fix eq/substrate disorder: seed", tok)) <= 0)
     throw feq::SpecError("disorder: seed must be a positive integer (got '" + tok + "')");
+}
+
+// thermal, barrier and seed together: the hop law of fix eq/contacts for a
+// sawtooth block whose contacts break at both ends of its well
+void FixEQSubstrate::setup_thermal(char ** /*arg*/)
+{
+  if (!thermal_flag) {
+    if (tseed > 0)
+      error->all(FLERR, "Fix eq/substrate seed: the seed keys the budgets of thermal hops and "
+                        "needs the thermal keyword");
+    if (tkw.spec.p != 0.0 || tkw.spec.q != 0.0)
+      error->all(FLERR, "Fix eq/substrate barrier: needs the thermal keyword");
+    return;
+  }
+  if (shape.kind() != feq::SubstrateShape::SAWTOOTH)
+    error->all(FLERR, "Fix eq/substrate thermal: needs the sawtooth shape (got {}): the hop law "
+                      "is that of elastic contacts that break at the end of the well", shape.describe());
+  if (!rev_break)
+    error->all(FLERR, "Fix eq/substrate thermal: needs 'reverse break': a hop moves the block's "
+                      "well origin by u_c ahead of it, which the periodic prolongation of the "
+                      "substrate force (reverse periodic, the default) would undo");
+  if (tseed <= 0)
+    error->all(FLERR, "Fix eq/substrate thermal: needs 'seed S' (a positive integer that keys the "
+                      "hazard budgets of the hops)");
+  try {
+    hopper = feq::BlockHops(tkw.finish(force->boltz, shape.period()), shape.period(),
+                            static_cast<uint64_t>(tseed));
+  } catch (const feq::SpecError &e) {
+    error->all(FLERR, "Fix eq/substrate {}", e.what());
+  }
 }
 
 // what the arguments must satisfy together (finite energies and forces
@@ -368,6 +423,19 @@ void FixEQSubstrate::init_block(int i)
   s[DISORDER] = disorder.dist
       ? disorder.dist->sample(feq::draw(dseed, atom->tag[i], 0, feq::STREAM_STIFFNESS))
       : 1.0;
+  if (thermal_flag) {
+    s[LIFE] = s[HOPS] = 0.0;
+    s[BUDGET] = hopper.budget(static_cast<uint64_t>(atom->tag[i]), 0);
+  }
+}
+
+// the duration of a step of this fix's force evaluations (its r-RESPA
+// level: the time between two of them)
+double FixEQSubstrate::step_dt() const
+{
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    return static_cast<Respa *>(update->integrate)->step[ilevel_respa];
+  return update->dt;
 }
 
 /* ----------------------------------------------------------------------
@@ -410,6 +478,10 @@ void FixEQSubstrate::apply(double **f)
   // the run continues as if it had not been split
   const bool keep = exact && fsub_valid && update->whichflag == 1 && update->setupflag;
   const double half = 0.5 * uc;
+  // thermal hops: time passes only between the evaluations of a run
+  const double hop_dt = dynamics && chained ? step_dt() : 0.0;
+  feq::WellChange changes[feq::BlockHops::MAX_CHANGES];
+  int nchange = 0;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -432,8 +504,29 @@ void FixEQSubstrate::apply(double **f)
     }
     const double kd = st[KC] * st[DISORDER];
     double fs;
+    nchange = 0;
     if (keep && u == u_old) {
       fs = st[FSUB];
+    } else if (thermal_flag) {
+      // sawtooth, reverse break: the walk of lib/eq_substrate (hops and
+      // crossings, each a new life with a new budget)
+      feq::HopState hs;
+      hs.anchor = a_old;
+      hs.budget = st[BUDGET];
+      hs.life = st[LIFE];
+      hs.hops = st[HOPS];
+      try {
+        nchange = hopper.step(static_cast<uint64_t>(atom->tag[i]), u_old, u, st[DISORDER],
+                              hop_dt, exact, hs, changes);
+      } catch (const feq::SpecError &e) {
+        error->one(FLERR, "Fix eq/substrate thermal: {}", e.what());
+      }
+      st[ANCHOR] = hs.anchor;
+      st[BUDGET] = hs.budget;
+      st[LIFE] = hs.life;
+      st[HOPS] = hs.hops;
+      const double r = u - hs.anchor;
+      fs = r >= 0.0 ? -kd * shape.phi_in(r) : kd * shape.phi_in(-r);
     } else if (!rev_break) {
       // most steps stay in the well of the last evaluation: no division
       double r = u - a_old;
@@ -456,8 +549,13 @@ void FixEQSubstrate::apply(double **f)
       }
       fs = r >= 0.0 ? -kd * shape.phi_in(r) : kd * shape.phi_in(-r);
     }
-    // the well changed: one impulse correction per boundary passed
-    if (correct && st[ANCHOR] != a_old && u != u_old) {
+    // the well changed: one impulse correction per change (thermal: at the
+    // fraction of the step where each happened)
+    if (thermal_flag) {
+      if (correct)
+        for (int k = 0; k < nchange; ++k)
+          fs += (window - changes[k].theta) * changes[k].sign * kd * dphi;
+    } else if (correct && st[ANCHOR] != a_old && u != u_old) {
       const double sign = st[ANCHOR] > a_old ? 1.0 : -1.0;
       const double first = rev_break ? a_old + sign * uc : (sign > 0.0 ? a_old + uc : a_old);
       const long nb = std::lround(std::fabs(st[ANCHOR] - a_old) / uc);
@@ -541,6 +639,7 @@ double FixEQSubstrate::compute_vector(int n)
     case V_ESUB: return global_sum[S_ESUB];
     case V_EDRIVE: return global_sum[S_EDRIVE];
     case V_COUNT: return count;
+    case V_HOPS: return global_sum[S_HOPS];
   }
   return 0.0;
 }
@@ -575,6 +674,7 @@ void FixEQSubstrate::reduce()
     local[S_ESUB] += st[KC] * st[DISORDER] * (shape.potential_in(std::fabs(r)) + W * st[ANCHOR] / uc);
     if (drive_flag) local[S_EDRIVE] += halfK * (u - Xs) * (u - Xs);
     local[S_COUNT] += 1.0;
+    if (thermal_flag) local[S_HOPS] += st[HOPS];
   }
   MPI_Allreduce(local, global_sum, NSUM, MPI_DOUBLE, MPI_SUM, world);
   reduced_eval = neval;
@@ -653,4 +753,17 @@ void FixEQSubstrate::check_restored(int i)
     error->one(FLERR, "Fix {} eq/substrate: the restart file's block {} is garbled: k_c {} with "
                       "factor {} (a corrupt file)", id, atom->tag[i], st[KC], st[DISORDER]);
   check_reach(i, idir, st[SITE], "site");
+  if (thermal_flag && (!(st[BUDGET] >= 0.0) || !(st[LIFE] >= 0.0) || !(st[HOPS] >= 0.0) ||
+                       st[HOPS] > st[LIFE] || st[LIFE] != std::floor(st[LIFE])))
+    error->one(FLERR, "Fix {} eq/substrate: the restart file's block {} is garbled: hazard budget "
+                      "{}, wells entered {}, thermal hops {} (a corrupt file)", id, atom->tag[i],
+               st[BUDGET], st[LIFE], st[HOPS]);
+}
+
+std::string FixEQSubstrate::layout_hint(long stored) const
+{
+  if (stored != NCOL && stored != NCOL_THERMAL) return "";
+  return fmt::format("the keyword thermal adds {} values per block (hazard budget, wells entered, "
+                     "thermal hops); give it in both the run that wrote the file and this one, or "
+                     "in neither", NCOL_THERMAL - NCOL);
 }

@@ -77,6 +77,10 @@ class FixEQSubstrate : public FixEQBlocks {
   // contacts; a / u_c counts its slips), site (unwrapped coordinate along
   // dir where u = 0), field h of pair eq/elastic (force -h; 0 without)
   enum { DISP, FSUB, FDRIVE, KC, DISORDER, ANCHOR, SITE, INTERACT, NCOL };
+  // with the thermal keyword three more: the hazard budget left of the
+  // block's life in its well, the wells it has entered (the counter key of
+  // its budgets) and how many of them by a thermal hop
+  enum { BUDGET = NCOL, LIFE, HOPS, NCOL_THERMAL };
 
  private:
   double kc;            // default k_c of a block
@@ -95,6 +99,11 @@ class FixEQSubstrate : public FixEQBlocks {
   // quenched disorder of the blocks' k_c (threshold force) factors d_n
   feq::DistributionSpec disorder;
   bigint dseed;
+  // thermally activated hops (thermal, barrier, seed keywords)
+  int thermal_flag;              // the thermal keyword was given (state layout)
+  feq::ThermalKeywords tkw;
+  feq::BlockHops hopper;
+  bigint tseed;
   // moves of a block by more than half a period in one step (time step too
   // large), counted on each rank and reported once per run (post_run); the
   // first one of this rank
@@ -103,7 +112,7 @@ class FixEQSubstrate : public FixEQBlocks {
   double jump_size;
 
   // sums over the blocks (velocity, displacement, forces, energies, count)
-  enum { S_VEL, S_DISP, S_FSUB, S_FDRIVE, S_ESUB, S_EDRIVE, S_COUNT, NSUM };
+  enum { S_VEL, S_DISP, S_FSUB, S_FDRIVE, S_ESUB, S_EDRIVE, S_COUNT, S_HOPS, NSUM };
   double global_sum[NSUM];
   bigint neval, reduced_eval;    // force evaluations; the one the sums are of
   // the last force evaluation was one of dynamics (a setup or a step, at
@@ -121,6 +130,9 @@ class FixEQSubstrate : public FixEQBlocks {
   double parse(int narg, char **arg);
   void parse_shape(const std::vector<std::string> &args, size_t &iarg);
   void parse_disorder(const std::vector<std::string> &args, size_t &iarg);
+  void setup_thermal(char **arg);
+  double step_dt() const;
+  std::string layout_hint(long stored) const override;
   bigint check(char **arg, double stage0);
   void init_block(int i) override;
   void apply(double **f);

@@ -698,6 +698,12 @@ def gen_substrate(b):
         ("table", [P("file", "sub.table", "infile"), P("key", "BLOCK", "key")], [
             ("drive", ["0.07", "1e-4"]),
             ("disorder", ["constant", P("seed", "5", "int")])]),
+        # thermal hops: every value of thermal, barrier and seed
+        ("sawtooth", [P("uc", "1.0")], [
+            ("drive", ["0.07", "1e-4"]), ("reverse", ["break"]),
+            ("thermal", [P("T", "0.05", valid=("zero",)), P("eps_a", "1.0"), P("omega", "1.0")]),
+            ("barrier", [P("p", "2.0", valid=("zero",)), P("q", "0.25", valid=("zero",))]),
+            ("seed", [P("S", "7", "int")])]),
     ]
     kc_cmd = Cmd("modkc", r"fix_modify", ["fix_modify", "sub"], [],
                  [("kc", [P("group", "center", "group", nomissing=True), P("value", "0.5", valid=("zero",))])])

@@ -160,3 +160,132 @@ TEST(Substrate, TableTextRoundTrip)
     EXPECT_DOUBLE_EQ(p2[k], p[k]);
   }
 }
+
+// ---------------------------------------------------------------------------
+// thermally activated hops of a sawtooth block (BlockHops)
+
+namespace {
+feq::ThermalSpec hop_spec(double theta, double omega, double p = 0.0, double q = 0.0)
+{
+  feq::ThermalSpec s;
+  s.theta = theta;
+  s.omega = omega;
+  s.p = p;
+  s.q = q;
+  s.xc = 1.0;
+  return s;
+}
+}    // namespace
+
+TEST(SubstrateHops, AthermalCrossingIsTheEndOfTheWell)
+{
+  // T = 0: only the ends of the well; the change at the linear crossing
+  const feq::BlockHops hop(hop_spec(0.0, 1.0), 1.0, 7);
+  feq::HopState st;
+  st.budget = hop.budget(3, 0);
+  feq::WellChange ch[feq::BlockHops::MAX_CHANGES];
+  int n = hop.step(3, 0.9, 1.3, 1.0, 0.1, true, st, ch);
+  ASSERT_EQ(n, 1);
+  EXPECT_NEAR(ch[0].theta, 0.25, 1e-15);
+  EXPECT_EQ(ch[0].sign, 1);
+  EXPECT_FALSE(ch[0].thermal);
+  EXPECT_EQ(st.anchor, 1.0);
+  EXPECT_EQ(st.life, 1.0);
+  EXPECT_EQ(st.hops, 0.0);
+  EXPECT_EQ(st.budget, hop.budget(3, 1));
+  // backward through -u_c twice with crossing step (both at the end)
+  n = hop.step(3, 1.3, -1.5, 1.0, 0.1, false, st, ch);
+  ASSERT_EQ(n, 2);
+  EXPECT_EQ(ch[0].sign, -1);
+  EXPECT_EQ(ch[1].sign, -1);
+  EXPECT_EQ(ch[0].theta, 1.0);
+  EXPECT_EQ(st.anchor, -1.0);
+  EXPECT_EQ(st.life, 3.0);
+}
+
+TEST(SubstrateHops, HopAtFixedStretchIsWhereTheBudgetRunsOut)
+{
+  // a block held at s: the hazard nu t reaches the budget b at t = b / nu,
+  // nu = omega exp(-(1 - s)^(3/2) / theta) (written out here)
+  const double theta = 0.05, omega = 2.0, s = 0.7, dt = 0.37;
+  const double nu = omega * std::exp(-std::pow(1.0 - s, 1.5) / theta);
+  const feq::BlockHops hop(hop_spec(theta, omega), 1.0, 11);
+  EXPECT_NEAR(hop.rate(s, 1.0), nu, 1e-14 * nu);
+  for (uint64_t tag = 1; tag <= 20; ++tag) {
+    feq::HopState st;
+    st.budget = hop.budget(tag, 0);
+    const double t_hop = st.budget / nu;
+    feq::WellChange ch[feq::BlockHops::MAX_CHANGES];
+    int k = 0, n = 0;
+    while (n == 0 && k < 1000000) n = hop.step(tag, s, s, 1.0, dt, true, st, ch), ++k;
+    ASSERT_EQ(n, 1);
+    EXPECT_TRUE(ch[0].thermal);
+    EXPECT_EQ(ch[0].sign, 1);
+    EXPECT_NEAR((k - 1 + ch[0].theta) * dt, t_hop, 1e-9 * t_hop + 1e-12);
+    EXPECT_EQ(st.anchor, 1.0);
+    EXPECT_EQ(st.hops, 1.0);
+    EXPECT_EQ(st.life, 1.0);
+  }
+}
+
+TEST(SubstrateHops, MovingBlockHopsWhereTheHazardIntegralReachesTheBudget)
+{
+  // stretch linear in time over one step: the hop fraction against the
+  // root of an independent quadrature of the rate (Simpson, 20000 panels).
+  // The library's one Simpson panel over the step errs by h^5 max|nu^(4)|
+  // / 2880, nu^(4) ~ nu (dpsi/h)^4 for psi = ln nu nearly linear over the
+  // step (dpsi = psi(s1) - psi(s0)): a relative error dpsi^4 / 2880 of the
+  // step's hazard (x 1.5 for the curvature of psi); the hop fraction errs
+  // by that hazard error over nu(s_hop) dt
+  const double theta = 0.02, omega = 1e3, d = 1.3, p = 1.0, q = 0.5;
+  const feq::BlockHops hop(hop_spec(theta, omega, p, q), 1.0, 5);
+  auto nu = [&](double s) {
+    const double u = 1.0 - s;
+    return omega * std::pow(u, q) * std::exp(-std::pow(d, p) * std::pow(u, 1.5) / theta);
+  };
+  const double s0 = 0.80, s1 = 0.83, dt = 1.0;
+  auto H = [&](double f) {
+    return simpson([&](double t) { return nu(s0 + (s1 - s0) * t); }, 0.0, f, 20000) * dt;
+  };
+  const double Hstep = H(1.0);
+  feq::HopState st;
+  st.budget = 0.37 * Hstep;
+  feq::WellChange ch[feq::BlockHops::MAX_CHANGES];
+  const int n = hop.step(9, s0, s1, d, dt, true, st, ch);
+  ASSERT_EQ(n, 1);
+  double lo = 0.0, hi = 1.0;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (H(mid) < 0.37 * Hstep ? lo : hi) = mid;
+  }
+  const double dpsi = std::log(nu(s1) / nu(s0));
+  const double errH = 1.5 * std::pow(dpsi, 4) / 2880.0 * Hstep;
+  const double fhop = 0.5 * (lo + hi);
+  EXPECT_NEAR(ch[0].theta, fhop, errH / (nu(s0 + (s1 - s0) * fhop) * dt));
+  EXPECT_GT(errH, 1e-5 * Hstep);    // (the bound is not vacuous: Simpson's error is seen)
+  // no hop: the budget loses the step's hazard
+  feq::HopState st2;
+  st2.budget = 2.0 * Hstep;
+  EXPECT_EQ(hop.step(9, s0, s1, d, dt, true, st2, ch), 0);
+  EXPECT_NEAR(st2.budget, Hstep, errH);
+}
+
+TEST(SubstrateHops, BudgetsAreExponentialAndKeyedByTagAndLife)
+{
+  const feq::BlockHops a(hop_spec(0.1, 1.0), 1.0, 3), b(hop_spec(0.1, 1.0), 1.0, 4);
+  EXPECT_EQ(a.budget(5, 2), a.budget(5, 2));
+  EXPECT_NE(a.budget(5, 2), a.budget(5, 3));
+  EXPECT_NE(a.budget(5, 2), a.budget(6, 2));
+  EXPECT_NE(a.budget(5, 2), b.budget(5, 2));
+  // mean 1 and P(b > 1) = 1/e within 5 standard errors of n draws
+  const int n = 40000;
+  double sum = 0.0, above = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double x = a.budget(1 + k % 200, k / 200);
+    sum += x;
+    above += x > 1.0;
+  }
+  EXPECT_NEAR(sum / n, 1.0, 5.0 / std::sqrt(n));
+  const double pe = std::exp(-1.0);
+  EXPECT_NEAR(above / n, pe, 5.0 * std::sqrt(pe * (1 - pe) / n));
+}

@@ -22,6 +22,7 @@
 #include "eq_substrate.h"
 
 #include "eq_distribution.h"    // SpecError
+#include "eq_random.h"
 
 #include <algorithm>
 #include <cmath>
@@ -193,6 +194,85 @@ std::string substrate_table_text(const std::string &keyword, const std::vector<d
   out << "\n" << keyword << "\nN " << v.size() << "\n\n";
   for (size_t k = 0; k < v.size(); ++k) out << k + 1 << " " << v[k] << " " << phi[k] << "\n";
   return out.str();
+}
+
+BlockHops::BlockHops(const ThermalSpec &spec, double uc_, uint64_t seed_) :
+    model(spec), uc(uc_), seed(seed_)
+{
+}
+
+double BlockHops::budget(uint64_t tag, uint64_t life) const
+{
+  // Exp(1) = -ln U with full relative precision in both tails
+  return -std::log1p(-draw(seed, tag, life, STREAM_BUDGET).one_minus_u);
+}
+
+void BlockHops::new_life(uint64_t tag, HopState &st) const
+{
+  st.life += 1.0;
+  st.budget = budget(tag, static_cast<uint64_t>(st.life));
+}
+
+/* ----------------------------------------------------------------------
+   the step is walked in pieces [f, 1] of its duration, as ContactModel::
+   advance() walks a contact's: a piece ends where the stretch reaches
+   +-u_c, where the hazard (Simpson's rule over the piece) exhausts the
+   budget, whichever comes first, or at the end of the step
+------------------------------------------------------------------------- */
+
+int BlockHops::step(uint64_t tag, double u0, double u1, double d, double dt, bool exact,
+                    HopState &st, WellChange *changes) const
+{
+  const double motion = u1 - u0;    // per unit fraction of the step
+  const double xs = uc * d;         // the law in units of k_c: x = d s, x_s = d u_c
+  double s_a = u0 - st.anchor;
+  double f = 0.0;
+  int n = 0;
+  while (true) {
+    const double h = (1.0 - f) * dt;
+    const double s_b = f == 0.0 ? u1 - st.anchor : s_a + motion * (1.0 - f);
+    double g = 1.0;    // fraction of the piece at which the block leaves its well
+    int sign = 0;
+    bool thermal = false;
+    if (s_b >= uc) {
+      g = s_a < uc ? (uc - s_a) / (s_b - s_a) : 0.0;
+      sign = 1;
+    } else if (s_b <= -uc) {
+      g = s_a > -uc ? (-uc - s_a) / (s_b - s_a) : 0.0;
+      sign = -1;
+    }
+    if (h > 0.0 && model.params().thermal()) {
+      const double s_g = g == 1.0 ? s_b : s_a + (s_b - s_a) * g;
+      RatePoint start, end;
+      start = model.point(s_a * d, xs);
+      const double dH = model.hazard(s_a * d, s_g * d, 0.0, h * g, xs, &start, &end);
+      if (dH > 0.0 && dH >= st.budget) {    // first: where the budget runs out
+        g *= ThermalModel::budget_fraction(st.budget / dH, start, end);
+        thermal = true;
+      } else {
+        st.budget -= dH;
+      }
+    }
+    if (sign == 0 && !thermal) return n;
+    // the change, at fraction fb of the step (the end with crossing step)
+    const double fb = exact ? std::min(1.0, f + g * (1.0 - f)) : 1.0;
+    const double s_c = fb == 1.0 ? u1 - st.anchor : s_a + motion * (fb - f);
+    if (thermal) sign = s_c >= 0.0 ? 1 : -1;
+    if (n >= MAX_CHANGES)
+      throw SpecError("block " + std::to_string(tag) + " changed wells more than " +
+                      std::to_string(MAX_CHANGES) + " times in one step (from u = " + num(u0) +
+                      " to " + num(u1) + ", hop rate " + num(rate(0.0, d)) +
+                      " at zero stretch): reduce the timestep or the attempt frequency omega");
+    changes[n].theta = fb;
+    changes[n].sign = sign;
+    changes[n].thermal = thermal;
+    ++n;
+    st.anchor += sign * uc;
+    if (thermal) st.hops += 1.0;
+    new_life(tag, st);
+    s_a = fb == 1.0 ? u1 - st.anchor : s_c - sign * uc;
+    f = fb;
+  }
 }
 
 }    // namespace feq

@@ -38,6 +38,9 @@
 #ifndef FEQ_SUBSTRATE_H
 #define FEQ_SUBSTRATE_H
 
+#include "eq_thermal.h"
+
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -89,6 +92,67 @@ class SubstrateShape {
 // then "k v_k phi_k" lines (the format fix eq/contacts reads for thresholds)
 std::string substrate_table_text(const std::string &keyword, const std::vector<double> &v,
                                  const std::vector<double> &phi, const std::string &comment);
+
+/* ----------------------------------------------------------------------
+   Thermally activated hops of a block between the wells of a sawtooth
+   substrate whose contacts break at both ends of the well (fix
+   eq/substrate ... reverse break thermal ...).  A block in the well with
+   origin a (stretch s = u - a, |s| < u_c) leaves it at the rate of
+   fix eq/contacts' law (eq_thermal.h) with the block's stretch and
+   threshold in units of force: x = k_c d s, x_s = k_c d u_c, x_c = k_c u_c,
+   i.e. u = 1 - |s|/u_c and a barrier scale d^p.  Each life in a well has
+   a hazard budget, Exp(1) drawn from (seed, tag, life, STREAM_BUDGET);
+   the block hops when the hazard accumulated since it entered the well
+   reaches it: a moves by u_c in the direction of s (as when s reaches
+   +-u_c at T = 0, where it also moves), and a new life begins.
+------------------------------------------------------------------------- */
+
+// one change of well within a step: at the fraction theta of the step,
+// direction sign (+1: forward), by the hazard (thermal) or by reaching
+// the end of the well
+struct WellChange {
+  double theta = 1.0;
+  int sign = 1;
+  bool thermal = false;
+};
+
+// the per-block state of the hops
+struct HopState {
+  double anchor = 0.0;    // well origin a
+  double budget = 0.0;    // hazard the current life can still take
+  double life = 0.0;      // wells entered since the block was set up (counter key)
+  double hops = 0.0;      // of them by the hazard
+};
+
+class BlockHops {
+ public:
+  static constexpr int MAX_CHANGES = 64;    // per block and step
+  BlockHops() : model(ThermalSpec()) {}
+  // uc: the period; seed > 0: key of the budgets
+  BlockHops(const ThermalSpec &spec, double uc, uint64_t seed);
+  const ThermalModel &thermal() const { return model; }
+
+  // the Exp(1) budget of life `life` of block `tag`
+  double budget(uint64_t tag, uint64_t life) const;
+  // hop rate at stretch s, threshold factor d (0 at T = 0)
+  double rate(double s, double d) const { return model.rate(s * d, uc * d); }
+
+  // one step of duration dt over which the block moves linearly from u0
+  // to u1 (|u0 - anchor| < uc at the start).  exact: each change at the
+  // fraction of the step where it happens (the threshold crossing by
+  // linear interpolation, the hop where the budget runs out, for a rate
+  // that grows exponentially over the piece); else at the end of the
+  // step.  Returns the number of changes written to `changes` (at most
+  // MAX_CHANGES; more throws SpecError).  dt = 0: no hazard, crossings only
+  int step(uint64_t tag, double u0, double u1, double d, double dt, bool exact, HopState &st,
+           WellChange *changes) const;
+
+ private:
+  ThermalModel model;
+  double uc = 1.0;
+  uint64_t seed = 1;
+  void new_life(uint64_t tag, HopState &st) const;
+};
 
 }    // namespace feq
 
