@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Thermal creep of arrested kinks of the FK-ME chain (fix eq/substrate
 thermal): v_creep against 1/T at two driving forces below the discrete
 depinning force f_+, against the rate prediction.
