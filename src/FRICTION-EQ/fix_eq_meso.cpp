@@ -88,7 +88,7 @@ struct FixEQMeso::Args {
 FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
     FixEQBlocks(lmp, narg, arg), nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
     lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), threshold_sd(0.0),
-    grid_warned(0), grid_default(0), grid_chosen(0), window_safe(0.0), window_warned(0),
+    grid_warned(0), grid_default(0), grid_fresh(1), window_safe(0.0), window_warned(0),
     pi0_local(0.0),
     list_stamp(-1), screened(0), ran(0), restored(0), comm_mode(0), check_every(CHECK_DEFAULT), norm_max(0.0),
     neval(0), reduced_eval(-1), out(nullptr)
@@ -345,8 +345,7 @@ void FixEQMeso::init_block(int i)
 void FixEQMeso::setup(int vflag)
 {
   ran = 1;
-  if (!grid_chosen && grid_default && screen_flag) choose_grid();
-  grid_chosen = 1;
+  if (grid_default && screen_flag) choose_grid();
   if (utils::strmatch(update->integrate_style, "^verlet")) {
     post_force(vflag);
   } else {
@@ -643,10 +642,11 @@ void FixEQMeso::check_screened_grid()
   else if (want < model->min_grid())
     why = fmt::format("the finest grid within the limit of {} doubles per block",
                       feq::MESO_MAX_WIDTH);
+  else if (!grid_fresh)
+    why = "the grid of the blocks' state (they moved in an earlier run or came from a restart "
+          "file with a history: a grid is never changed under a state)";
   else
-    why = "the default grid of the blocks' state when the screening was first computed (the "
-          "blocks carried a state from a restart file or an earlier run: a grid is never changed "
-          "under a state)";
+    why = "the default grid chosen at this run's set-up (Pi0 has grown since)";
   if (comm->me == 0)
     error->warning(FLERR, "Fix {} eq/meso: grid {:.6g} resolves the screened thresholds x_s/(1 + "
                           "eps0) (Pi0 = {:.6g}, eps0 = Pi0/(1 - Pi0) = {:.6g}) with {:.3g} cells per "
@@ -686,19 +686,22 @@ void FixEQMeso::check_window()
 
 void FixEQMeso::choose_grid()
 {
+  grid_fresh = all_fresh() ? 1 : 0;
+  if (!grid_fresh) return;
   partners();
   gather_columns(false);
   lattice_sums(false, true);
-  const double want = std::max(feq::meso_default_grid(*thresholds, pi0_max), model->min_grid());
-  if (!(want > 0.0) || want == model->grid() || !all_fresh()) return;
+  const double screened = feq::meso_default_grid(*thresholds, pi0_max);
+  const double want = std::max(screened, model->min_grid());
+  if (!(want > 0.0) || want == model->grid()) return;
   set_grid(want);
   if (comm->me == 0)
-    utils::logmesg(lmp, "fix eq/meso: grid {:.6g} for the screened thresholds (Pi0 = {:.6g}: {} of "
-                        "their standard deviation sd (1 - Pi0)); {} doubles per block\n",
+    utils::logmesg(lmp, "fix eq/meso: grid {:.17g} for the screened thresholds (Pi0 = {:.6g}: {} "
+                        "of their standard deviation sd (1 - Pi0)); {} doubles per block\n",
                    model->grid(), pi0_max,
-                   want > feq::meso_default_grid(*thresholds, pi0_max)
-                       ? std::string("the finest grid within the state size limit, coarser than 1/8")
-                       : std::string("1/8"),
+                   want > screened ? std::string("the finest grid within the state size limit, "
+                                                 "coarser than 1/8")
+                                   : std::string("1/8"),
                    M_HEAD + model->width());
 }
 
@@ -709,7 +712,7 @@ bool FixEQMeso::all_fresh()
   model->init(made.data(), 0.0);
   const size_t bytes = made.size() * sizeof(double);
   int mine = 1;
-  for (int i = 0; i < atom->nlocal; i++)
+  for (int i = 0; i < atom->nlocal && mine; i++)
     if ((atom->mask[i] & groupbit) && state[i][M_FLAG] != 0.0 &&
         memcmp(state[i] + M_HEAD, made.data(), bytes) != 0)
       mine = 0;
@@ -817,6 +820,10 @@ void FixEQMeso::restart(char *buf)
   }
   const double du = rec[6];
   const bool adopt = grid_default && std::isfinite(du) && du > 0.0;
+  if (!grid_default && std::isfinite(du) && du > 0.0 && du != model->grid())
+    error->all(FLERR, "Fix {} eq/meso: the restart file's blocks are on the grid {:.17g} that the "
+                      "writing run chose by default, not on grid {:.17g}: omit the grid keyword to "
+                      "continue on it, or give exactly that value", id, du, model->grid());
   // the signature against the file's default grid when the command has none
   feq::Signature sig = shaping;
   if (adopt)
@@ -826,7 +833,7 @@ void FixEQMeso::restart(char *buf)
   if (adopt && du != model->grid()) {
     set_grid(du);
     if (comm->me == 0)
-      utils::logmesg(lmp, "fix eq/meso: grid {:.6g} of the restart file's blocks; {} doubles per "
+      utils::logmesg(lmp, "fix eq/meso: grid {:.17g} of the restart file's blocks; {} doubles per "
                           "block\n", du, M_HEAD + model->width());
   }
   // the stage: FixEQBlocks' record of 3 values and the signature

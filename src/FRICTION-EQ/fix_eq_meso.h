@@ -109,9 +109,10 @@ class FixEQMeso : public FixEQBlocks {
   feq::DistributionPtr thresholds;
   int grid_warned;     // the warning on a grid too coarse for the screened thresholds was given
   // the grid: the user's (grid keyword), or the default, chosen for the
-  // screened thresholds at the setup of the first run (grid_chosen) while
-  // every block is fresh; restart files carry the grid of their blocks
-  int grid_default, grid_chosen;
+  // screened thresholds at the setup of every run while every block is
+  // fresh (grid_fresh: they were at the last set-up); restart files carry
+  // the grid of their blocks
+  int grid_default, grid_fresh;
   double window_safe;    // smallest safe window with screening (lib meso_min_window)
   int window_warned;
   double pi0_local;    // largest sum_m Pi_mn of this rank's blocks at the last step

@@ -415,3 +415,43 @@ def test_meso_chain_front_tends_to_the_fkme_kink(tmp_path):
     for w, dlt in rel.items():
         assert 0.5 * w <= dlt <= 1.0 * w, rel
     assert 1.6 <= rel[0.1] / rel[0.05] <= 2.4, rel
+
+
+def test_default_grid_follows_pi0_while_the_blocks_are_fresh(tmp_path):
+    """run 0, then change_box changes Pi0: the next run's set-up chooses the
+    grid of the new Pi0 (sd (1 - Pi0)/8), since no block has moved; the
+    logged grid against that closed form (uniform thresholds: sd = width
+    / sqrt(12)).  2 ranks."""
+    (tmp_path / "in.grid").write_text("""
+units lj
+dimension 2
+atom_style atomic
+boundary p p p
+atom_modify map array
+lattice sq 1.0
+region box block -0.5 19.5 -0.5 3.5 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+comm_modify cutoff 1.8
+pair_style zero 1.0
+pair_coeff * *
+neighbor 0.3 bin
+change_box all y scale 1.05 remap
+fix m all eq/meso 100 1.0 threshold uniform 0.75e-4 1.25e-4 reform delta 0.0 screen 0.00243 1.0 1.01
+run 0
+print "PI0 $(f_m[9]:%.17g)"
+change_box all y scale 0.952381 remap
+run 0
+print "PI0 $(f_m[9]:%.17g)"
+""")
+    log = eqtools.run_lammps(tmp_path / "in.grid", nprocs=2, cwd=tmp_path)
+    pi0 = [float(l.split()[1]) for l in log.splitlines() if l.startswith("PI0 ")]
+    grids = [float(l.split()[3]) for l in log.splitlines()
+             if l.startswith("fix eq/meso: grid") and "screened thresholds" in l]
+    assert len(pi0) == 2 and len(grids) == 2, log[-3000:]
+    assert pi0[1] > pi0[0] + 0.3                      # the lattice was squeezed
+    sd = 0.5e-4 / math.sqrt(12.0)
+    for g, p in zip(grids, pi0):
+        assert abs(g / (sd * (1.0 - p) / 8.0) - 1.0) < 1e-12, (g, p)
+    assert "cells per standard deviation" not in log   # no coarse-grid warning
