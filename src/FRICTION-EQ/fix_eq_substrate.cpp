@@ -78,7 +78,7 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
   for (double &v : global_sum) v = 0.0;
   const double stage0 = parse(narg, arg);
   const bigint nblocks = check(arg, stage0);
-  setup_thermal(arg);
+  setup_thermal();
   stage = stage0;
   // what the stored blocks are made with (restart check): their k_c, the
   // substrate (the well origins are multiples of its period), the
@@ -226,7 +226,7 @@ void FixEQSubstrate::parse_disorder(const std::vector<std::string> &args, size_t
 
 // thermal, barrier and seed together: the hop law of fix eq/contacts for a
 // sawtooth block whose contacts break at both ends of its well
-void FixEQSubstrate::setup_thermal(char ** /*arg*/)
+void FixEQSubstrate::setup_thermal()
 {
   if (!thermal_flag) {
     if (tseed > 0)

@@ -130,7 +130,7 @@ class FixEQSubstrate : public FixEQBlocks {
   double parse(int narg, char **arg);
   void parse_shape(const std::vector<std::string> &args, size_t &iarg);
   void parse_disorder(const std::vector<std::string> &args, size_t &iarg);
-  void setup_thermal(char **arg);
+  void setup_thermal();
   double step_dt() const;
   std::string layout_hint(long stored) const override;
   bigint check(char **arg, double stage0);

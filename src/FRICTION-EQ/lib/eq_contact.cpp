@@ -107,14 +107,6 @@ void ContactModel::form(double *st, uint64_t tag, double xu) const
   if (thermal_on) start_life(st, tag, event, off);
 }
 
-namespace {
-// an Exp(1) variate, with full relative precision in both tails
-inline double exponential(const Uniform &u)
-{
-  return -std::log1p(-u.one_minus_u);
-}
-}    // namespace
-
 void ContactModel::start_life(double *st, uint64_t tag, uint64_t event, uint32_t off) const
 {
   // drawn at T = 0 too (never used there), so that a restart at T > 0 finds it

@@ -31,6 +31,7 @@
 #define FEQ_RANDOM_H
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace feq {
@@ -82,6 +83,12 @@ inline Uniform uniform_from_bits(uint64_t bits)
   const uint64_t k = bits >> 12;    // 52 random bits: u and 1-u exact near 0 and 1
   const double scale = 1.0 / 4503599627370496.0;    // 2^-52
   return {(double(k) + 0.5) * scale, (double((uint64_t(1) << 52) - k) - 0.5) * scale};
+}
+
+// an Exp(1) variate from u, with full relative precision in both tails
+inline double exponential(const Uniform &u)
+{
+  return -std::log1p(-u.one_minus_u);
 }
 
 // The draw of one contact: seed (> 0), global atom tag, event counter

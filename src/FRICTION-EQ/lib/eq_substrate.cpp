@@ -203,8 +203,7 @@ BlockHops::BlockHops(const ThermalSpec &spec, double uc_, uint64_t seed_) :
 
 double BlockHops::budget(uint64_t tag, uint64_t life) const
 {
-  // Exp(1) = -ln U with full relative precision in both tails
-  return -std::log1p(-draw(seed, tag, life, STREAM_BUDGET).one_minus_u);
+  return exponential(draw(seed, tag, life, STREAM_BUDGET));
 }
 
 void BlockHops::new_life(uint64_t tag, HopState &st) const
