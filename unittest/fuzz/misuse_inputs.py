@@ -196,6 +196,8 @@ C_ARGS = "1.0 99 threshold uniform 0.75 1.25"
 C_THERMAL = C_ARGS + " thermal 0.1 1.0 1.0 aging log 0.05 1.0 delay exp 0.1"
 S_ARGS = "1.0 sawtooth 1.0 drive 0.07 0.01 stage 14.5"
 S_DISORDER = " disorder gaussian 1.0 0.05 9"
+# thermal hops of the blocks (sawtooth wells, reverse break): 3 more values per block
+S_THERMAL = S_ARGS + " reverse break thermal 0.3 1.0 5.0 seed 5"
 MP_ARGS = "100 1.0 threshold gaussian 1.0 0.25 reform gaussian 0.05 0.1 drive 10.0 1.0 check 50"
 MS_ARGS = "100 1.0 threshold uniform 0.75 1.25 reform delta 0.0 grid 0.02 screen 0.001 1.0 1.5"
 
@@ -446,6 +448,9 @@ def gen_unfix_within(b):
     thermal = contacts_system("none", "move", cargs=C_THERMAL)
     thermal.name += "-thermal"
     systems.append(thermal)
+    hops = substrate_system("elastic", S_THERMAL)
+    hops.name += "-thermal"
+    systems.append(hops)
     for s in systems:
         for aid, cmds, exp in within_actions(s):
             every = 25 if aid.endswith("-late") else 10
@@ -697,6 +702,24 @@ def gen_restart_args(b):
           ok())
     b.add(cls, "substrate-hybrid.unchanged",
           restart_case(substrate_system("hybrid-zero"), fs + S_ARGS, refs, thermo=th), ok())
+    # thermal hops add three columns per block (budget, life, hops): added
+    # or dropped is an error naming thermal; T, eps_a, omega, barrier may
+    # change (a temperature jump); another seed keys the budgets of the new
+    # lives (documented: the budgets drawn are kept)
+    sbreak = substrate_system("elastic", S_ARGS + " reverse break")
+    tsub = substrate_system("elastic", S_THERMAL)
+    href = refs + [("hops", "f_sub[11]")]
+    hth = th + " f_sub[11]"
+    b.add(cls, "substrate.thermal-added", restart_case(sbreak, fs + S_THERMAL, []),
+          err(r"Fix \S+ eq/substrate", r"\bthermal\b"), files)
+    b.add(cls, "substrate.thermal-dropped", restart_case(tsub, fs + S_ARGS + " reverse break", []),
+          err(r"Fix \S+ eq/substrate", r"\bthermal\b"), files)
+    b.add(cls, "substrate.thermal-unchanged", restart_case(tsub, fs + S_THERMAL, href, thermo=hth), ok())
+    b.add(cls, "substrate.thermal-values", restart_case(
+        tsub, fs + S_THERMAL.replace("thermal 0.3 1.0 5.0", "thermal 0.2 2.0 3.0 barrier 1 0.5"), [],
+        thermo=hth), ok())
+    b.add(cls, "substrate.thermal-seed", restart_case(
+        tsub, fs + S_THERMAL.replace("seed 5", "seed 6"), [], thermo=hth), ok())
     b.add(cls, "substrate-hybrid.kc", restart_case(
         substrate_system("hybrid-zero"), fs + S_ARGS.replace("1.0 sawtooth", "0.5 sawtooth"), []),
         restart_err("eq/substrate", "kc"))
@@ -1094,6 +1117,12 @@ def gen_box_atoms(b):
     for aid, cmds in [("plain", []), ("displace-random", ["displace_atoms all random 0.05 0.05 0.0 4711 units box"]),
                       ("delete", ["group gone id 3 17 22", "delete_atoms group gone"])]:
         b.add(cls, f"substrate-disorder.{aid}", box_case(s, cmds), ok())
+    # thermal hops: the blocks' budgets and lives migrate with them
+    s = substrate_system("elastic", S_THERMAL)
+    for aid, cmds in [("plain", []), ("displace-random", ["displace_atoms all random 0.05 0.05 0.0 4711 units box"]),
+                      ("delete", ["group gone id 3 17 22", "delete_atoms group gone"]),
+                      ("change_box", ["change_box all x final -1 41 remap"])]:
+        b.add(cls, f"substrate-thermal.{aid}", box_case(s, cmds), ok())
     # fix move keeps its original positions: a remapped box puts atoms back
     s = contacts_system("elastic", "move")
     b.add(cls, f"{s.name}.move-remap-shrink", box_case(s, ["change_box all x scale 0.8 remap"]), overlap)
