@@ -179,12 +179,26 @@ TEST(MesoThermal, RestDecay)
     }
     EXPECT_NEAR(m.mean_stretch(b.s.data()), 0.5 * std::exp(-nu * t), 1e-14);
   }
-  // beyond the threshold ((1 + eps) X >= x_s): at once
+  // eps jumps so that (1 + eps) X >= x_s: broken at once (threshold picture)
   const ThermalMesoModel m(make_delta(1.0), nullptr, 0.01, thermal(0.05));
   Block b(m);
   b.go(0.5, 0.0, 0.0);
   b.go(0.5, 1.0, 1e-9);
   EXPECT_EQ(m.attached(b.s.data()), 0.0);
+}
+
+// a step nominally du but longer by rounding is one sub-step: the result
+// is continuous in the step there (the same to 1e-12 for dX = du (1 +- 1e-12))
+TEST(MesoThermal, SubstepCountStable)
+{
+  const double du = 0.01;
+  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), du, thermal(0.05), 8);
+  Block a(m), b(m);
+  for (int k = 1; k <= 500; ++k) {
+    a.go(k * du * (1.0 - 1e-12), 1.5, 1.0);
+    b.go(k * du * (1.0 + 1e-12), 1.5, 1.0);
+  }
+  EXPECT_NEAR(a.F(), b.F(), 1e-10);
 }
 
 /* ----------------------------------------------------------------------

@@ -33,6 +33,7 @@ namespace {
 
 const double TAIL = 1e-17;      // P_c cut at these quantiles (as MesoModel)
 const double EMPTY = 1e-20;     // what is left of a (row, panel) below this breaks
+const double SPLIT_SLACK = 1e-9;    // relative excess of du a sub-step may have
 
 enum Slot { TAG, XPOS, JLO, JHI, RATE, DET, MASS, STRETCH, NHEAD };
 
@@ -193,7 +194,7 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
     double *r = row(s, j);
     const double A = double(j) * du;
     const double d0 = X0 - A, d1 = X1 - A;
-    const double yj = r[0];
+    const double yj = r[0];    // the thresholds left lie above y_j
     if (thermal) {
       const double y0 = g * std::fabs(d0), y1 = g * std::fabs(d1), ym = g * std::fabs(Xm - A);
       for (int l = 0; l < nl; ++l) {
@@ -321,7 +322,11 @@ double ThermalMesoModel::advance(double *s, double X1, double eps, double h) con
     throw std::invalid_argument("time step must be finite and >= 0 (got " + fmt(h) + ")");
   const double X0 = s[XPOS];
   if (X1 == X0 && h == 0.0) return 0.0;
-  const long n = std::max(1L, static_cast<long>(std::ceil(std::fabs(X1 - X0) * inv_du)));
+  // sub-steps of at most du (1 + 1e-9): a step of du that rounding made
+  // a little longer is not split (the count, hence the discretization, must
+  // not flip with the rounding of the displacements)
+  const long n =
+      std::max(1L, static_cast<long>(std::ceil(std::fabs(X1 - X0) * inv_du - SPLIT_SLACK)));
   double total = 0.0, xa = X0;
   for (long k = 1; k <= n; ++k) {
     const double xb = k == n ? X1 : X0 + (X1 - X0) * (double(k) / double(n));

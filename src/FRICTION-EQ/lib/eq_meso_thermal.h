@@ -36,6 +36,10 @@
      * thermally at the rate nu(y; x_s) = omega w^q exp(-(x_s/x_c)^p
        w^{3/2}/theta), w = 1 - y/x_s, per unit TIME (ThermalModel of
        eq_thermal.h, theta = k_B T/eps_a).
+   NOTE: MesoModel follows the master equation with the rate (1 + eps)
+   P((1 + eps) u) instead, where a jump of eps at fixed X breaks nothing.
+   The two are the same at constant eps (steady sliding, the T -> 0 test)
+   and differ when eps jumps.
    A broken contact re-forms at once, unstretched (R = delta(0)), or never
    (R null, "reform none").  Other R, aging, delays and rest ages are not
    supported (SpecError).  Start: all contacts unstretched (relaxed; with
@@ -50,17 +54,17 @@
    threshold LABEL PANEL: nl equal panels [a_l, b_l] of the support of
    P_c (cut at its 1e-17 quantiles), weight = the panel's probability;
    within a panel the thresholds are uniform (uniform P_c is exact).  Each
-   anchor row keeps y_j, the largest effective stretch its contacts have
-   seen: the thresholds left in panel l are uniform on [max(a_l, y_j),
-   b_l].  A call advance(X1, eps, h) is split into n = ceil(|X1 - X0|/du)
+   anchor row keeps y_j, the largest effective stretch (1 + eps)|X - A_j|
+   its contacts have seen: the thresholds left in panel l are uniform on
+   [max(a_l, y_j), b_l].  A call advance(X1, eps, h) is split into n = ceil(|X1 - X0|/du)
    equal sub-steps of the path (X linear in time); per sub-step:
      * thermal: hazard by Simpson's rule in time (rates at the sub-step's
        start, middle and end, at the midpoint threshold of what is left of
        the panel), broken m (1 - e^{-H}), at the Simpson-weighted mean
        position; what is left below 1e-20 of a (row, panel) is broken;
-     * crossings: y_j -> (1 + eps) max(|X0 - A_j|, |X1 - A_j|); the panel
-       part below it breaks (uniform: a closed form), at the position
-       where it is crossed on average;
+     * crossings: y_j -> (1 + eps) max(|X0 - A_j|, |X1 - A_j|); the
+       panel part below it breaks (uniform: a closed form), at the
+       position where it is crossed on average (at X0 when eps grew);
      * re-formation: all mass broken in the sub-step re-forms unstretched
        at its mean break position (crossing exact; crossing step: at the
        sub-step's end), put on the two neighbouring anchor nodes with hat
@@ -74,10 +78,14 @@
    visited (a ring of 2 ceil(top/du) + 8 rows: no contact survives
    |u| >= top).
    Approximation: fresh contacts put on a row share its y_j; rows near X
-   (where they go) have y_j <= (1 + eps) du below every threshold, except
-   after a backward move of the block beyond its lowest screened
+   (where they go) have y_j <= (1 + eps) du, below every threshold,
+   except after a backward move of the block beyond its lowest screened
    threshold.  y_j is evaluated at the sub-steps' ends (exact: |X - A| is
    largest at an end of a straight path).
+   Sub-steps: a move of du (1 + 1e-9) or less is one sub-step, so that
+   the count (and the discretization) does not flip with the rounding of
+   displacements that are nominally du (measured in a screened chain with
+   dX = du: 1 or 2 sub-steps shift the steady eps0 by 0.6 %).
 
    Cost: 3 exponentials per (row, panel) holding mass per sub-step; rows
    holding mass ~ top/((1 + eps) du) or fewer (thermal breaking empties
