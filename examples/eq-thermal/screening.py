@@ -176,6 +176,10 @@ def main():
         ax.loglog(v, [r[1]["lattice"] for r in rows], "bs", mfc="none",
                   label="nonlinear lattice (same fit)")
         ax.loglog(v, [r[2] for r in rows], "ro", label="fix eq/meso thermal")
+        from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
+        ax.yaxis.set_major_locator(FixedLocator([0.8, 1.0, 1.2, 1.5, 2.0, 2.5, 3.0]))
+        ax.yaxis.set_major_formatter(ScalarFormatter())
+        ax.yaxis.set_minor_formatter(NullFormatter())
         ax.set_xlabel(r"$v$ ($x_c\,\omega$)")
         ax.set_ylabel(r"$\lambda_s/\lambda_c$")
         ax.set_title(r"screening length at $\theta = 0.05$, $\Pi_0 = 0.6$")

@@ -92,8 +92,8 @@ struct FixEQMeso::Args {
 };
 
 FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
-    FixEQBlocks(lmp, narg, arg), thermal_flag(0), hstep(0.0), respa_step(0.0), in_setup(0), nlambda(0.0), kc(0.0), xc(0.0),
-    screen_flag(0), kappa(0.0),
+    FixEQBlocks(lmp, narg, arg), thermal_flag(0), hstep(0.0), respa_step(0.0), in_setup(0),
+    nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
     lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), threshold_sd(0.0),
     grid_warned(0), grid_default(0), grid_fresh(1), window_safe(0.0), window_warned(0),
     pi0_local(0.0),
@@ -213,11 +213,12 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
       } else if (kw == "labels") {
         if (iarg >= args.size()) throw feq::SpecError("labels: missing value (threshold panels)");
         const std::string &tok = args[iarg++];
-        if (!utils::is_integer(tok) || EQUtil::bnumeric(lmp, "Fix eq/meso labels", tok) < 1 ||
-            EQUtil::bnumeric(lmp, "Fix eq/meso labels", tok) > 4096)
-          throw feq::SpecError("labels: expected an integer from 1 to 4096 (threshold panels), got '" +
-                               tok + "'");
-        a.labels = std::stoi(tok);
+        const bigint n = utils::is_integer(tok) ? EQUtil::bnumeric(lmp, "Fix eq/meso labels", tok)
+                                                : 0;
+        if (n < 1 || n > 4096)
+          throw feq::SpecError("labels: expected an integer from 1 to 4096 (threshold panels), "
+                               "got '" + tok + "'");
+        a.labels = static_cast<int>(n);
       } else if (kw == "window") {
         window = feq::parse_finite(args, iarg, "window w", number);
         if (!(window > 0.0)) throw feq::SpecError("window: w must be > 0 (got " + args[iarg - 1] + ")");
@@ -248,7 +249,7 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
                       "thermal kernel)");
   if (thermal_flag && a.du == 0.0)
     error->all(FLERR, "Fix eq/meso thermal: needs the grid keyword (at T > 0 the screened "
-                      "thresholds x_s/(1 + eps0) depend on the velocity: choose du <= sd/(8 (1 + "
+                      "thresholds x_s/(1 + eps0) depend on the velocity: choose du <= sd/(4 (1 + "
                       "eps0)), sd the thresholds' standard deviation, eps0 the steady load factor)");
 }
 
@@ -275,14 +276,16 @@ void FixEQMeso::make_model(Args &a)
   const double sd = std::sqrt(std::max(0.0, a.threshold.dist->variance()));
   threshold_sd = sd;
   thresholds = a.threshold.dist;
+  // at T > 0 (theta = k_B T/eps_a with LAMMPS' k_B)
+  const feq::ThermalSpec spec =
+      thermal_flag ? a.thermal.finish(force->boltz, a.threshold.dist->mean()) : feq::ThermalSpec();
+  const int labels = a.labels ? a.labels : feq::MESO_THERMAL_LABELS;
   if (grid_default) a.du = feq::meso_default_grid(*a.threshold.dist);
   try {
     if (grid_default && !(a.du > 0.0)) throw feq::GridError("grid: zero width");
     if (thermal_flag)
-      model.reset(new feq::ThermalMesoModel(
-          a.threshold.dist, a.reform.dist, a.du,
-          a.thermal.finish(force->boltz, a.threshold.dist->mean()),
-          a.labels ? a.labels : feq::MESO_THERMAL_LABELS, a.crossing, a.start));
+      model.reset(new feq::ThermalMesoModel(a.threshold.dist, a.reform.dist, a.du, spec, labels,
+                                            a.crossing, a.start));
     else
       model.reset(new feq::AthermalBlocks(std::unique_ptr<feq::MesoModel>(
           new feq::MesoModel(a.threshold.dist, a.reform.dist, a.du, a.crossing, a.start))));
@@ -301,11 +304,9 @@ void FixEQMeso::make_model(Args &a)
   shaping.add("grid", EQRecord::number(a.du));
   shaping.add("dir", std::string(1, "xyz"[idir]));
   // at T > 0 only (athermal restart records are as before)
-  if (thermal_flag) {
-    const feq::ThermalSpec t = a.thermal.finish(force->boltz, a.threshold.dist->mean());
-    shaping.add("thermal", fmt::format("{:.17g}|{:.17g}|{:.17g}|{:.17g}|{}", t.theta, t.omega, t.p,
-                                       t.q, a.labels ? a.labels : feq::MESO_THERMAL_LABELS));
-  }
+  if (thermal_flag)
+    shaping.add("thermal", fmt::format("{:.17g}|{:.17g}|{:.17g}|{:.17g}|{}", spec.theta,
+                                       spec.omega, spec.p, spec.q, labels));
 }
 
 // what the arguments must satisfy together; returns the number of blocks
@@ -416,7 +417,8 @@ void FixEQMeso::min_setup(int /*vflag*/)
 
 void FixEQMeso::post_force(int /*vflag*/)
 {
-  // the time of this step (thermal breaks), the outer step with rRESPA
+  // the time of this step (thermal breaks): the timestep, with r-RESPA
+  // that of the fix's level
   hstep = in_setup ? 0.0 : respa_step > 0.0 ? respa_step : update->dt;
   apply(true, atom->f);
   if (screen_flag) screening();
