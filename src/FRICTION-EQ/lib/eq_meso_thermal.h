@@ -92,9 +92,10 @@
    theta = 0.05 and 0.1, v = 1e-3 ... 1e-1, eps = 0 ... 2, steps dX =
    du/2, panels of 3.1 du_eff: max |F - F_ref| over X in [0, 4] is 2.95
    ... 3.35 du_eff^2 (du_eff = (1 + eps) du); halving du, dX and the
-   panel width divides it by 3.8 ... 4.0.  At theta = 0: within 1 du^2 of
-   the exact renewal solution (constant eps), and equal to MesoModel to
-   rounding with crossing step.
+   panel width divides it by 3.8 ... 4.0.  At theta = 0: within 1.1 du^2
+   of the exact renewal solution (constant eps, increments 0.37 du, du =
+   0.005 ... 0.02; eps = 0: 0.66 ... 0.75 du^2, eps = 0.5: 1.03 ... 1.09
+   du^2), and equal to MesoModel to rounding with crossing step.
 
    Cost: 3 exponentials per (row, panel) holding mass per sub-step; rows
    holding mass ~ top/((1 + eps) du) or fewer (thermal breaking empties
