@@ -50,7 +50,9 @@
 #include "eq_lammps_util.h"
 #include "eq_record_lammps.h"
 #include "eq_meso.h"
+#include "eq_meso_thermal.h"
 #include "eq_record.h"
+#include "eq_thermal.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -64,7 +66,8 @@ using namespace FixConst;
 
 namespace {
 const char *KEYWORDS =
-    "threshold, reform, grid, dir, crossing, start, drive, stage, screen, window, check";
+    "threshold, reform, grid, dir, crossing, start, drive, stage, screen, window, check, thermal, "
+    "barrier, labels";
 // global vector: sum F, <Gamma>, <eps>, <X>, sum drive force, N, X_s,
 // normalization error of the last check, largest Pi0
 enum { V_FORCE, V_RATE, V_EPS, V_DISP, V_FDRIVE, V_COUNT, V_STAGE, V_NORM, V_PI0, NVEC };
@@ -83,10 +86,14 @@ struct FixEQMeso::Args {
   double du = 0.0, stage0 = 0.0;
   feq::Crossing crossing = feq::Crossing::EXACT;
   feq::MEStart start = feq::MEStart::RELAXED;
+  feq::ThermalKeywords thermal;
+  bool have_thermal = false, have_barrier = false;
+  int labels = 0;    // 0: not given
 };
 
 FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
-    FixEQBlocks(lmp, narg, arg), nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
+    FixEQBlocks(lmp, narg, arg), thermal_flag(0), hstep(0.0), respa_step(0.0), in_setup(0),
+    nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
     lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), threshold_sd(0.0),
     grid_warned(0), grid_default(0), grid_fresh(1), window_safe(0.0), window_warned(0),
     pi0_local(0.0),
@@ -116,7 +123,7 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
   if (comm->me == 0)
     utils::logmesg(lmp, "fix eq/meso: {} blocks along {} of N_lambda = {} contacts (k_c = {}); "
                         "thresholds {} (<x_s> = {:.6g}); reform {}; grid {:.6g} ({} doubles per "
-                        "block); {}{}\n",
+                        "block); {}{}{}\n",
                    nblocks, "xyz"[idir], nlambda, kc, a.threshold.text, xc, a.reform.text,
                    model->grid(), M_HEAD + model->width(),
                    screen_flag ? fmt::format("screening kappa = {}, lambda_c = {}, rcut = {}",
@@ -124,7 +131,12 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
                                : std::string("no screening"),
                    drive_flag ? fmt::format("; driving springs K = {} to a stage at {} moving at {}",
                                             kdrive, a.stage0, vstage)
-                              : std::string());
+                              : std::string(),
+                   thermal_flag
+                       ? fmt::format("; {} (theta = k_B T/eps_a = {:.6g}), {} threshold panels",
+                                     a.thermal.text(), a.thermal.temperature * force->boltz /
+                                     a.thermal.eps_a, a.labels ? a.labels : feq::MESO_THERMAL_LABELS)
+                       : std::string());
 
   restart_global = 1;
   scalar_flag = 1;
@@ -193,6 +205,20 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
             : feq::MEStart::REFORM;
       } else if (kw == "screen") {
         parse_screen(args, iarg);
+      } else if (kw == "aging" || kw == "delay" || kw == "rest") {
+        throw feq::SpecError(kw + ": not supported by fix eq/meso (its contacts re-form at once "
+                                  "and do not age); allowed at T > 0: thermal, barrier, labels");
+      } else if (feq::parse_thermal_keyword(kw, args, iarg, number, a.thermal)) {
+        (kw == "thermal" ? a.have_thermal : a.have_barrier) = true;
+      } else if (kw == "labels") {
+        if (iarg >= args.size()) throw feq::SpecError("labels: missing value (threshold panels)");
+        const std::string &tok = args[iarg++];
+        const bigint n = utils::is_integer(tok) ? EQUtil::bnumeric(lmp, "Fix eq/meso labels", tok)
+                                                : 0;
+        if (n < 1 || n > 4096)
+          throw feq::SpecError("labels: expected an integer from 1 to 4096 (threshold panels), "
+                               "got '" + tok + "'");
+        a.labels = static_cast<int>(n);
       } else if (kw == "window") {
         window = feq::parse_finite(args, iarg, "window w", number);
         if (!(window > 0.0)) throw feq::SpecError("window: w must be > 0 (got " + args[iarg - 1] + ")");
@@ -214,6 +240,17 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
   if (!a.have_threshold)
     error->all(FLERR, "Fix eq/meso: the threshold keyword is required; allowed styles: {}",
                feq::role_styles(feq::Role::THRESHOLD));
+  thermal_flag = a.have_thermal && a.thermal.temperature > 0.0 ? 1 : 0;
+  if (a.have_barrier && !thermal_flag)
+    error->all(FLERR, "Fix eq/meso barrier: needs thermal with T > 0 (the barrier shapes the "
+                      "thermal rate)");
+  if (a.labels && !thermal_flag)
+    error->all(FLERR, "Fix eq/meso labels: needs thermal with T > 0 (the threshold panels of the "
+                      "thermal kernel)");
+  if (thermal_flag && a.du == 0.0)
+    error->all(FLERR, "Fix eq/meso thermal: needs the grid keyword (at T > 0 the screened "
+                      "thresholds x_s/(1 + eps0) depend on the velocity: choose du <= sd/(4 (1 + "
+                      "eps0)), sd the thresholds' standard deviation, eps0 the steady load factor)");
 }
 
 // screen kappa lambda_c rcut
@@ -239,10 +276,19 @@ void FixEQMeso::make_model(Args &a)
   const double sd = std::sqrt(std::max(0.0, a.threshold.dist->variance()));
   threshold_sd = sd;
   thresholds = a.threshold.dist;
+  // at T > 0 (theta = k_B T/eps_a with LAMMPS' k_B)
+  const feq::ThermalSpec spec =
+      thermal_flag ? a.thermal.finish(force->boltz, a.threshold.dist->mean()) : feq::ThermalSpec();
+  const int labels = a.labels ? a.labels : feq::MESO_THERMAL_LABELS;
   if (grid_default) a.du = feq::meso_default_grid(*a.threshold.dist);
   try {
     if (grid_default && !(a.du > 0.0)) throw feq::GridError("grid: zero width");
-    model.reset(new feq::MesoModel(a.threshold.dist, a.reform.dist, a.du, a.crossing, a.start));
+    if (thermal_flag)
+      model.reset(new feq::ThermalMesoModel(a.threshold.dist, a.reform.dist, a.du, spec, labels,
+                                            a.crossing, a.start));
+    else
+      model.reset(new feq::AthermalBlocks(std::unique_ptr<feq::MesoModel>(
+          new feq::MesoModel(a.threshold.dist, a.reform.dist, a.du, a.crossing, a.start))));
   } catch (const feq::GridError &) {
     if (!grid_default) throw;
     throw feq::SpecError(fmt::format("threshold {}: its standard deviation {:.6g} (from its "
@@ -257,6 +303,10 @@ void FixEQMeso::make_model(Args &a)
   shaping.add("reform", EQRecord::distribution(a.reform));
   shaping.add("grid", EQRecord::number(a.du));
   shaping.add("dir", std::string(1, "xyz"[idir]));
+  // at T > 0 only (athermal restart records are as before)
+  if (thermal_flag)
+    shaping.add("thermal", fmt::format("{:.17g}|{:.17g}|{:.17g}|{:.17g}|{}", spec.theta,
+                                       spec.omega, spec.p, spec.q, labels));
 }
 
 // what the arguments must satisfy together; returns the number of blocks
@@ -346,6 +396,8 @@ void FixEQMeso::setup(int vflag)
 {
   ran = 1;
   if (grid_default && screen_flag) choose_grid();
+  // no time passes at the set-up: no thermal breaks
+  in_setup = 1;
   if (utils::strmatch(update->integrate_style, "^verlet")) {
     post_force(vflag);
   } else {
@@ -353,6 +405,7 @@ void FixEQMeso::setup(int vflag)
     post_force_respa(vflag, ilevel_respa, 0);
     static_cast<Respa *>(update->integrate)->copy_f_flevel(ilevel_respa);
   }
+  in_setup = 0;
   check_normalization();
 }
 
@@ -364,6 +417,9 @@ void FixEQMeso::min_setup(int /*vflag*/)
 
 void FixEQMeso::post_force(int /*vflag*/)
 {
+  // the time of this step (thermal breaks): the timestep, with r-RESPA
+  // that of the fix's level
+  hstep = in_setup ? 0.0 : respa_step > 0.0 ? respa_step : update->dt;
   apply(true, atom->f);
   if (screen_flag) screening();
   if (check_every > 0 && update->ntimestep % check_every == 0) check_normalization();
@@ -371,7 +427,11 @@ void FixEQMeso::post_force(int /*vflag*/)
 
 void FixEQMeso::post_force_respa(int vflag, int ilevel, int /*iloop*/)
 {
-  if (ilevel == ilevel_respa) post_force(vflag);
+  if (ilevel != ilevel_respa) return;
+  // the time of a step at this level (an inner level is called more often)
+  respa_step = static_cast<Respa *>(update->integrate)->step[ilevel];
+  post_force(vflag);
+  respa_step = 0.0;
 }
 
 // during minimization the blocks' contacts hold: the force is the elastic
@@ -411,7 +471,7 @@ void FixEQMeso::apply(bool advance, double **f)
       const double X0 = model->position(q);
       double broken;
       try {
-        broken = model->advance(q, X, st[M_EPS]);
+        broken = model->advance(q, X, st[M_EPS], hstep);
       } catch (const std::exception &e) {
         error->one(FLERR, "Fix eq/meso: block {}: {}", atom->tag[i], e.what());
       }
@@ -632,6 +692,8 @@ double FixEQMeso::lattice_sums(bool eps_update, bool rebuilt)
 // why the fix is on it and the grid the default would choose
 void FixEQMeso::check_screened_grid()
 {
+  // at T > 0 eps0 depends on the velocity: the grid is the user's (doc)
+  if (thermal_flag) return;
   const double screened_sd = threshold_sd * (1.0 - pi0_max);
   if (grid_warned || !(model->grid() > feq::MESO_GRID_SD_FRACTION * screened_sd)) return;
   grid_warned = 1;
@@ -727,7 +789,7 @@ bool FixEQMeso::all_fresh()
 void FixEQMeso::set_grid(double du)
 {
   try {
-    std::unique_ptr<feq::MesoModel> m = model->regrid(du);
+    std::unique_ptr<feq::BlockModel> m = model->regrid(du);
     model = std::move(m);
   } catch (const feq::SpecError &e) {
     error->all(FLERR, "Fix {} eq/meso {}", id, e.what());
@@ -818,6 +880,18 @@ void FixEQMeso::restart(char *buf)
     FixEQBlocks::restart(buf);
     return;
   }
+  // a thermal run's record has one keyword more (thermal): say which
+  // way the file and the command differ
+  const size_t nsig = shaping.hashes.size();
+  const double nfile = rec[7];
+  if (nfile == double(nsig + 1) && !thermal_flag)
+    error->all(FLERR, "Fix {} eq/meso thermal: the restart file's blocks were made at T > 0 "
+                      "(keyword thermal): re-specify thermal (and barrier, labels) as in that run",
+               id);
+  if (nfile + 1.0 == double(nsig) && thermal_flag)
+    error->all(FLERR, "Fix {} eq/meso thermal: the restart file's blocks were made athermal "
+                      "(no keyword thermal, or T = 0): remove thermal to continue them, or define "
+                      "the fix under another ID to start afresh", id);
   const double du = rec[6];
   const bool adopt = grid_default && std::isfinite(du) && du > 0.0;
   if (!grid_default && std::isfinite(du) && du > 0.0 && du != model->grid())

@@ -28,7 +28,9 @@
    Optional screening (scr.eq01-scr.eq05): the breaking rate of block n
    sees the forces scaled by 1 + eps_n, eps_n = x_c sum_m Gamma_m Pi_mn,
    Pi_mn = N_lambda kappa (lambda_c / r_mn)^3 over the blocks within a
-   cutoff.  See doc/src/fix_eq_meso.rst.
+   cutoff.  At T > 0 (keywords thermal, barrier) the contacts also break
+   thermally at the rate nu((1 + eps) u, x_s) per unit time over each
+   step's time (lib/eq_meso_thermal).  See doc/src/fix_eq_meso.rst.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -47,7 +49,7 @@ FixStyle(eq/meso,FixEQMeso);
 #include <vector>
 
 namespace feq {
-class MesoModel;
+class BlockModel;
 }
 
 namespace LAMMPS_NS {
@@ -93,7 +95,11 @@ class FixEQMeso : public FixEQBlocks {
   static constexpr int NOUT = M_SITE + 1;
 
  private:
-  std::unique_ptr<feq::MesoModel> model;
+  std::unique_ptr<feq::BlockModel> model;    // lib/eq_meso (athermal) or lib/eq_meso_thermal
+  int thermal_flag;    // thermal kernel (keyword thermal with T > 0)
+  double hstep;        // time of the current step (0 at set-up)
+  double respa_step;   // time of a step of the rRESPA level (0: update->dt)
+  int in_setup;
   double nlambda, kc, xc;    // contacts per block, their stiffness, mean threshold
   // screening: Pi(r) = nlambda kappa (lambda_c / r)^3 for r <= rcut
   int screen_flag;

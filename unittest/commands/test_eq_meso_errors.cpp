@@ -199,6 +199,75 @@ TEST_F(EQMesoErrors, RestartOfOtherThresholds)
   std::remove("eq_meso_thr.restart");
 }
 
+// T > 0: keywords thermal, barrier, labels (lib eq_meso_thermal)
+TEST_F(EQMesoErrors, Thermal)
+{
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 barrier 1.0 0.5 labels 8");
+    command("run 0 post no");
+    command("unfix m");
+    // T = 0: the athermal kernel (no grid needed)
+    fix(std::string("100 1.0 ") + T + " thermal 0.0 1.0 1.0");
+    command("unfix m");
+  });
+  TEST_FAILURE(".*ERROR: Fix eq/meso thermal: needs the grid keyword \\(at T > 0 the screened "
+               "thresholds.*",
+               fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso thermal omega: must be > 0 \\(got 0\\).*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 0"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso thermal T: expected a number, got 'hot'.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal hot 1.0 1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso barrier q: must be >= 0 \\(got -1\\).*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 barrier 0 -1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso barrier: needs thermal with T > 0.*",
+               fix(std::string("100 1.0 ") + T + " barrier 1 0"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso labels: expected an integer from 1 to 4096.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 labels 2.5"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay: not supported by fix eq/meso.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso reform gaussian 0.05 0.1: with thermal, contacts re-form "
+               "unstretched \\(reform delta 0\\) or never \\(reform none\\).*",
+               fix(std::string("100 1.0 ") + T +
+                   " reform gaussian 0.05 0.1 grid 0.02 thermal 0.05 1.0 1.0"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso grid: spacing 1e-05 needs about .* doubles per block with 32 "
+               "threshold panels.*",
+               fix(std::string("100 1.0 ") + T + " grid 1e-5 thermal 0.05 1.0 1.0"););
+}
+
+TEST_F(EQMesoErrors, ThermalRestartOfTheOtherKind)
+{
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " grid 0.02");
+    command("run 0 post no");
+    command("write_restart eq_meso_kind.restart");
+    command("clear");
+    command("read_restart eq_meso_kind.restart");
+  });
+  TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: the restart file's blocks were made athermal.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0"););
+  HIDE_OUTPUT([&] {
+    command("clear");
+    command("units lj");
+    command("dimension 2");
+    command("atom_style atomic");
+    command("lattice sq 1.0");
+    command("region box block 0 6 0 3 -0.5 0.5");
+    command("create_box 1 box");
+    command("create_atoms 1 box");
+    command("mass 1 1.0");
+    command("comm_modify cutoff 2.0");
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0");
+    command("run 0 post no");
+    command("write_restart eq_meso_kind.restart");
+    command("clear");
+    command("read_restart eq_meso_kind.restart");
+  });
+  TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: the restart file's blocks were made at T > 0 "
+               "\\(keyword thermal\\).*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02"););
+  std::remove("eq_meso_kind.restart");
+}
+
 TEST_F(EQMesoErrors, FixModify)
 {
   HIDE_OUTPUT([&] { fix(std::string("100 1.0 ") + T); });

@@ -1,0 +1,394 @@
+/* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package: far-zone block at T > 0 (see eq_meso_thermal.h)
+------------------------------------------------------------------------- */
+
+#include "eq_meso_thermal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+
+namespace feq {
+
+namespace {
+
+const double TAIL = 1e-17;      // P_c cut at these quantiles (as MesoModel)
+const double EMPTY = 1e-20;     // what is left of a (row, panel) below this breaks
+const double SPLIT_SLACK = 1e-9;    // relative excess of du a sub-step may have
+
+enum Slot { TAG, XPOS, JLO, JHI, RATE, DET, MASS, STRETCH, NHEAD };
+
+std::string fmt(double v)
+{
+  std::ostringstream o;
+  o.precision(6);
+  o << v;
+  return o.str();
+}
+
+}    // namespace
+
+ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, double du_,
+                                   const ThermalSpec &spec_, int nlabels, Crossing crossing_,
+                                   MEStart start_) :
+    Pc(std::move(Pc_)), R(std::move(R_)), du(du_), inv_du(1.0 / du_), spec(spec_),
+    nlabels_req(nlabels), crossing(crossing_), start(start_)
+{
+  if (!Pc) throw SpecError("threshold: missing threshold distribution");
+  if (!(Pc->lower() >= 0.0))
+    throw SpecError("threshold " + Pc->describe() + ": breaking thresholds must be >= 0");
+  if (R && !(R->is_point() && R->mean() == 0.0))
+    throw SpecError("reform " + R->describe() + ": with thermal, contacts re-form unstretched "
+                    "(reform delta 0) or never (reform none)");
+  if (start == MEStart::REFORM && !R)
+    throw SpecError("start: 'reform' needs a reform distribution (reform none given); allowed: "
+                    "relaxed");
+  if (spec.aging != AgingLaw::NONE || (spec.delay != DelayKind::NONE && spec.tau > 0.0) ||
+      spec.rest > 0.0)
+    throw SpecError("thermal: aging, delay and rest are not supported by fix eq/meso (only "
+                    "thermal and barrier)");
+  if (!(spec.theta >= 0.0) || !(spec.omega > 0.0) || !std::isfinite(spec.omega) ||
+      !(spec.xc > 0.0))
+    throw SpecError("thermal: need theta >= 0, a finite omega > 0 and x_c > 0");
+  if (!(nlabels >= 1)) throw SpecError("labels: the number of panels must be >= 1");
+  if (!(du > 0.0) || !std::isfinite(du))
+    throw GridError("grid: spacing must be a finite number > 0 (got " + fmt(du) + ")");
+  set_panels();
+  const double sd = std::sqrt(std::max(0.0, Pc->variance()));
+  const double dmax = Pc->is_point() ? 0.25 * Pc->mean() : MesoModel::max_grid(*Pc);
+  if (!(dmax > 0.0)) throw GridError("grid: thresholds of zero width at 0");
+  if (du > dmax)
+    throw GridError("grid: spacing " + fmt(du) + " is too coarse for threshold " + Pc->describe() +
+                    " (sd " + fmt(sd) + "); the largest allowed value is " + fmt(dmax));
+  const double rows = 2.0 * std::ceil(ytop * inv_du) + 8.0;
+  if (!(NHEAD + rows * (nl + 1) <= MESO_MAX_WIDTH))
+    throw GridError("grid: spacing " + fmt(du) + " needs about " + fmt(NHEAD + rows * (nl + 1)) +
+                    " doubles per block with " + std::to_string(nl) +
+                    " threshold panels (limit " + std::to_string(MESO_MAX_WIDTH) +
+                    "); use a spacing >= " + fmt(min_grid()) + " or fewer labels");
+  ncap = int(rows);
+  nwidth = NHEAD + ncap * (nl + 1);
+  tag = 9.0e9 + double(nwidth) + 1e-3 * double(nl);
+}
+
+// nl equal panels of the support of P_c (cut at TAIL), weights the panel
+// probabilities; one panel for a point P_c
+void ThermalMesoModel::set_panels()
+{
+  double lo = Pc->lower(), hi = Pc->upper();
+  if (Pc->is_point() || !(hi > lo)) {
+    nl = 1;
+    pa = pb = {Pc->mean()};
+    pw = {1.0};
+  } else {
+    lo = std::max({lo, 0.0, Pc->quantile(TAIL)});
+    hi = std::min(hi, Pc->isf(TAIL));
+    nl = nlabels_req;
+    pa.resize(nl);
+    pb.resize(nl);
+    pw.resize(nl);
+    double sum = 0.0;
+    for (int l = 0; l < nl; ++l) {
+      pa[l] = lo + (hi - lo) * l / nl;
+      pb[l] = l + 1 == nl ? hi : lo + (hi - lo) * (l + 1) / nl;
+      pw[l] = std::max(0.0, Pc->cdf(pb[l]) - (l == 0 ? 0.0 : Pc->cdf(pa[l])));
+      sum += pw[l];
+    }
+    for (double &w : pw) w /= sum;
+  }
+  ytop = pb.back();
+  coef0.resize(nl);
+  invx0.resize(nl);
+  for (int l = 0; l < nl; ++l) {
+    const double xm = 0.5 * (pa[l] + pb[l]);
+    invx0[l] = 1.0 / xm;
+    coef0[l] = spec.theta > 0.0 ? std::pow(xm / spec.xc, spec.p) / spec.theta : 0.0;
+  }
+}
+
+double ThermalMesoModel::min_grid() const
+{
+  const double room = MESO_MAX_WIDTH - NHEAD - 10.0 * (nl + 1);
+  return room > 0.0 ? 2.0 * ytop * (nl + 1) / room : HUGE_VAL;
+}
+
+std::unique_ptr<BlockModel> ThermalMesoModel::regrid(double du_new) const
+{
+  return std::unique_ptr<BlockModel>(
+      new ThermalMesoModel(Pc, R, du_new, spec, nlabels_req, crossing, start));
+}
+
+double *ThermalMesoModel::row(double *s, long j) const
+{
+  long k = j % ncap;
+  if (k < 0) k += ncap;
+  return s + NHEAD + k * (nl + 1);
+}
+
+const double *ThermalMesoModel::row(const double *s, long j) const
+{
+  return row(const_cast<double *>(s), j);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ThermalMesoModel::init(double *s, double X0) const
+{
+  std::memset(s, 0, nwidth * sizeof(double));
+  s[TAG] = tag;
+  s[XPOS] = X0;
+  const double f = X0 * inv_du;
+  const long j = static_cast<long>(std::floor(f));
+  s[JLO] = s[JHI] = double(j);
+  const double t = f - double(j);
+  double *r = row(s, j);
+  for (int l = 0; l < nl; ++l) r[1 + l] = (1.0 - t) * pw[l];
+  if (t > 0.0) {
+    s[JHI] = double(j + 1);
+    r = row(s, j + 1);
+    for (int l = 0; l < nl; ++l) r[1 + l] = t * pw[l];
+  }
+  totals(s);
+}
+
+// nu at effective stretch y of a panel with midpoint threshold 1/inv_xm
+double ThermalMesoModel::rate_at(double y, double inv_xm, double coef) const
+{
+  const double w = 1.0 - y * inv_xm;
+  if (!(w > 0.0)) return spec.q > 0.0 ? 0.0 : spec.omega;
+  double nu = spec.omega * std::exp(-coef * w * std::sqrt(w));
+  if (spec.q != 0.0) nu *= std::pow(w, spec.q);
+  return nu;
+}
+
+// one sub-step X0 -> X1 (|X1 - X0| <= du) over the time h: the thermal
+// breaks, then the threshold crossings; D, MX: broken mass and its first
+// moment of the break positions
+void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, double h, double &D,
+                               double &MX) const
+{
+  const double g = 1.0 + eps, Xm = 0.5 * (X0 + X1);
+  const double Xlo = std::min(X0, X1), Xhi = std::max(X0, X1);
+  const bool thermal = spec.theta > 0.0 && h > 0.0;
+  const long jlo = long(s[JLO]), jhi = long(s[JHI]);
+  for (long j = jlo; j <= jhi; ++j) {
+    double *r = row(s, j);
+    const double A = double(j) * du;
+    const double d0 = X0 - A, d1 = X1 - A;
+    const double yj = r[0];    // the thresholds left lie above y_j
+    if (thermal) {
+      const double y0 = g * std::fabs(d0), y1 = g * std::fabs(d1), ym = g * std::fabs(Xm - A);
+      for (int l = 0; l < nl; ++l) {
+        const double m = r[1 + l];
+        if (!(m > 0.0)) continue;
+        double inv = invx0[l], coef = coef0[l];
+        if (yj > pa[l]) {    // partly crossed: the midpoint of what is left
+          const double xm = 0.5 * (std::min(yj, pb[l]) + pb[l]);
+          inv = 1.0 / xm;
+          coef = (spec.p == 0.0 ? 1.0 : std::pow(xm / spec.xc, spec.p)) / spec.theta;
+        }
+        const double n0 = rate_at(y0, inv, coef), nm = rate_at(ym, inv, coef),
+                     n1 = rate_at(y1, inv, coef);
+        const double sum = n0 + 4.0 * nm + n1;
+        if (!(sum > 0.0)) continue;
+        double b = -m * std::expm1(-h / 6.0 * sum);
+        if (m - b < EMPTY) b = m;
+        r[1 + l] = b == m ? 0.0 : m - b;
+        D += b;
+        MX += b * ((n0 * X0 + 4.0 * nm * Xm + n1 * X1) / sum);
+      }
+    }
+    const double ynew = g * std::max(std::fabs(d0), std::fabs(d1));
+    if (!(ynew > yj)) continue;
+    const bool at_start = std::fabs(d0) > std::fabs(d1);    // eps grew: crossed at X0
+    const double sgn = d1 >= 0.0 ? 1.0 : -1.0;
+    for (int l = 0; l < nl; ++l) {
+      const double m = r[1 + l];
+      if (!(m > 0.0)) continue;
+      const double lb = std::max(pa[l], yj);
+      double b, xb;
+      if (ynew >= pb[l]) {
+        b = m;
+        xb = 0.5 * (lb + pb[l]);
+      } else if (ynew > lb) {
+        b = m * ((ynew - lb) / (pb[l] - lb));
+        xb = 0.5 * (lb + ynew);
+      } else {
+        continue;
+      }
+      const double pos = at_start ? X0 : std::min(Xhi, std::max(Xlo, A + sgn * xb / g));
+      r[1 + l] = b == m ? 0.0 : m - b;
+      D += b;
+      MX += b * pos;
+    }
+    r[0] = ynew;
+  }
+}
+
+// the mass D broken in a sub-step re-forms unstretched at its mean break
+// position (crossing step: at X1), hat weights on the anchor nodes
+void ThermalMesoModel::reform(double *s, double X0, double X1, double D, double MX) const
+{
+  if (!(D > 0.0)) return;
+  if (!R) {
+    s[DET] += D;
+    return;
+  }
+  double a = crossing == Crossing::STEP ? X1 : MX / D;
+  a = std::min(std::max(X0, X1), std::max(std::min(X0, X1), a));
+  const double f = a * inv_du;
+  const long j = static_cast<long>(std::floor(f));
+  const double t = f - double(j);
+  long lo = long(s[JLO]), hi = long(s[JHI]);
+  const long want_lo = std::min(lo, j), want_hi = std::max(hi, t > 0.0 ? j + 1 : j);
+  if (lo > hi) {    // empty (cannot happen with re-forming contacts)
+    lo = want_lo;
+    hi = lo - 1;
+  }
+  if (want_hi - want_lo + 1 > ncap)
+    throw std::logic_error("eq/meso thermal: anchor ring overflow (" +
+                           std::to_string(want_hi - want_lo + 1) + " rows > " +
+                           std::to_string(ncap) + ")");
+  for (long k = want_lo; k < lo; ++k) std::memset(row(s, k), 0, (nl + 1) * sizeof(double));
+  for (long k = hi + 1; k <= want_hi; ++k) std::memset(row(s, k), 0, (nl + 1) * sizeof(double));
+  s[JLO] = double(want_lo);
+  s[JHI] = double(want_hi);
+  double *r = row(s, j);
+  for (int l = 0; l < nl; ++l) r[1 + l] += (D * (1.0 - t)) * pw[l];
+  if (t > 0.0) {
+    r = row(s, j + 1);
+    for (int l = 0; l < nl; ++l) r[1 + l] += (D * t) * pw[l];
+  }
+}
+
+// drop the empty rows at both ends of the occupied range
+void ThermalMesoModel::trim(double *s) const
+{
+  long lo = long(s[JLO]), hi = long(s[JHI]);
+  auto empty = [&](long j) {
+    const double *r = row(s, j);
+    for (int l = 0; l < nl; ++l)
+      if (r[1 + l] != 0.0) return false;
+    return true;
+  };
+  while (lo <= hi && empty(lo)) ++lo;
+  while (hi >= lo && empty(hi)) --hi;
+  s[JLO] = double(lo);
+  s[JHI] = double(hi);
+}
+
+// attached mass and mean stretch from the rows (ascending j: the same sums
+// wherever the state is)
+void ThermalMesoModel::totals(double *s) const
+{
+  const double X = s[XPOS];
+  double mass = 0.0, str = 0.0;
+  for (long j = long(s[JLO]); j <= long(s[JHI]); ++j) {
+    const double *r = row(s, j);
+    double m = 0.0;
+    for (int l = 0; l < nl; ++l) m += r[1 + l];
+    mass += m;
+    str += m * (X - double(j) * du);
+  }
+  s[MASS] = mass;
+  s[STRETCH] = str;
+}
+
+double ThermalMesoModel::advance(double *s, double X1, double eps, double h) const
+{
+  if (!std::isfinite(X1)) throw std::invalid_argument("non-finite block displacement " + fmt(X1));
+  if (!(eps >= 0.0) || !std::isfinite(eps))
+    throw std::invalid_argument("screening eps must be finite and >= 0 (got " + fmt(eps) + ")");
+  if (!(h >= 0.0) || !std::isfinite(h))
+    throw std::invalid_argument("time step must be finite and >= 0 (got " + fmt(h) + ")");
+  const double X0 = s[XPOS];
+  if (X1 == X0 && h == 0.0) return 0.0;
+  // sub-steps of at most du (1 + 1e-9): a step of du that rounding made
+  // a little longer is not split (the count, hence the discretization, must
+  // not flip with the rounding of the displacements)
+  const long n =
+      std::max(1L, static_cast<long>(std::ceil(std::fabs(X1 - X0) * inv_du - SPLIT_SLACK)));
+  double total = 0.0, xa = X0;
+  for (long k = 1; k <= n; ++k) {
+    const double xb = k == n ? X1 : X0 + (X1 - X0) * (double(k) / double(n));
+    double D = 0.0, MX = 0.0;
+    substep(s, xa, xb, eps, h / double(n), D, MX);
+    reform(s, xa, xb, D, MX);
+    trim(s);
+    total += D;
+    xa = xb;
+  }
+  s[XPOS] = X1;
+  s[RATE] = X1 != X0 ? total / std::fabs(X1 - X0) : 0.0;
+  totals(s);
+  return total;
+}
+
+/* ---------------------------------------------------------------------- */
+
+double ThermalMesoModel::position(const double *s) const
+{
+  return s[XPOS];
+}
+double ThermalMesoModel::mean_stretch(const double *s) const
+{
+  return s[STRETCH];
+}
+double ThermalMesoModel::attached(const double *s) const
+{
+  return s[MASS];
+}
+double ThermalMesoModel::detached(const double *s) const
+{
+  return s[DET];
+}
+double ThermalMesoModel::rate(const double *s) const
+{
+  return s[RATE];
+}
+
+long ThermalMesoModel::rows(const double *s) const
+{
+  return std::max(0L, long(s[JHI]) - long(s[JLO]) + 1);
+}
+
+double ThermalMesoModel::normalization_error(const double *s) const
+{
+  double mass = 0.0;
+  for (long j = long(s[JLO]); j <= long(s[JHI]); ++j) {
+    const double *r = row(s, j);
+    for (int l = 0; l < nl; ++l) mass += r[1 + l];
+  }
+  return std::fabs(mass + s[DET] - 1.0);
+}
+
+bool ThermalMesoModel::valid(const double *s) const
+{
+  if (s[TAG] != tag) return false;
+  const double lo = s[JLO], hi = s[JHI];
+  if (!(std::isfinite(lo) && std::isfinite(hi) && lo == std::floor(lo) && hi == std::floor(hi)))
+    return false;
+  if (!(std::fabs(lo) < 4e15 && hi - lo + 1.0 <= ncap && hi - lo >= -1.0)) return false;
+  return std::isfinite(s[XPOS]) && s[DET] >= 0.0;
+}
+
+}    // namespace feq

@@ -1,0 +1,227 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing author: FRICTION-EQ developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   FRICTION-EQ package: one lambda_c-block of the far zone at T > 0 with
+   screening (spec: shared/notes/thermal-aging.md (a), (e); paper Eqs.
+   crack.eq03x-crack.eq07, scr.eq01-scr.eq05).  LAMMPS-free.
+
+   BlockModel is the interface fix eq/meso drives: the athermal MesoModel
+   (eq_meso.h, through AthermalBlocks) and the thermal ThermalMesoModel
+   below.  A block's state is a flat, position-independent array of
+   width() doubles (memcpy-able: it migrates and goes into restarts).
+
+   Model (ThermalMesoModel)
+   ------------------------
+   The N_lambda contacts of a block moved to X: a contact with anchor A
+   (stretch u = X - A) and threshold x_s ~ P_c in a block with load factor
+   eps (frozen over one call) sees the effective stretch y = (1 + eps)|u|;
+   it breaks
+     * at once when y >= x_s (threshold picture: also when eps grows at
+       fixed X), and
+     * thermally at the rate nu(y; x_s) = omega w^q exp(-(x_s/x_c)^p
+       w^{3/2}/theta), w = 1 - y/x_s, per unit TIME (ThermalModel of
+       eq_thermal.h, theta = k_B T/eps_a).
+   NOTE: MesoModel follows the master equation with the rate (1 + eps)
+   P((1 + eps) u) instead, where a jump of eps at fixed X breaks nothing.
+   The two are the same at constant eps (steady sliding, the T -> 0 test)
+   and differ when eps jumps.
+   A broken contact re-forms at once, unstretched (R = delta(0)), or never
+   (R null, "reform none").  Other R, aging, delays and rest ages are not
+   supported (SpecError).  Start: all contacts unstretched (relaxed; with
+   R = delta(0) start reform is the same).  At constant eps this is a
+   block of contacts loaded at w = (1 + eps) v: F(X) = F_1((1 + eps) X)/
+   (1 + eps) with F_1 the single-slider master equation at velocity w.
+   At theta = 0 it is the athermal block (MesoModel, constant eps).
+
+   Scheme (after tools/eqtools/slider.py)
+   --------------------------------------
+   Contacts are stored by ANCHOR on the grid A_j = j du (nodes) and by
+   threshold LABEL PANEL: nl equal panels [a_l, b_l] of the support of
+   P_c (cut at its 1e-17 quantiles), weight = the panel's probability;
+   within a panel the thresholds are uniform (uniform P_c is exact).  Each
+   anchor row keeps y_j, the largest effective stretch (1 + eps)|X - A_j|
+   its contacts have seen: the thresholds left in panel l are uniform on
+   [max(a_l, y_j), b_l].  A call advance(X1, eps, h) is split into n = ceil(|X1 - X0|/du)
+   equal sub-steps of the path (X linear in time); per sub-step:
+     * thermal: hazard by Simpson's rule in time (rates at the sub-step's
+       start, middle and end, at the midpoint threshold of what is left of
+       the panel), broken m (1 - e^{-H}), at the Simpson-weighted mean
+       position; what is left below 1e-20 of a (row, panel) is broken;
+     * crossings: y_j -> (1 + eps) max(|X0 - A_j|, |X1 - A_j|); the
+       panel part below it breaks (uniform: a closed form), at the
+       position where it is crossed on average (at X0 when eps grew);
+     * re-formation: all mass broken in the sub-step re-forms unstretched
+       at its mean break position (crossing exact; crossing step: at the
+       sub-step's end), put on the two neighbouring anchor nodes with hat
+       weights (mass and mean anchor exact), with fresh thresholds (P_c
+       by panels).  Re-formed contacts do not break again within the
+       sub-step (it moves at most du).
+   Probability is conserved by construction (broken = re-formed, or
+   detached).  Errors: O(du^2) from the anchors, O(h_l^2) from the panels
+   (midpoint threshold), O(dt^2) relative hazard per step from Simpson.
+   Only the rows from the lowest to the highest one holding mass are
+   visited (a ring of 2 ceil(top/du) + 8 rows: no contact survives
+   |u| >= top).
+   Approximation: fresh contacts put on a row share its y_j; rows near X
+   (where they go) have y_j <= (1 + eps) du, below every threshold,
+   except after a backward move of the block beyond its lowest screened
+   threshold.  y_j is evaluated at the sub-steps' ends (exact: |X - A| is
+   largest at an end of a straight path).
+   Sub-steps: a move of du (1 + 1e-9) or less is one sub-step, so that
+   the count (and the discretization) does not flip with the rounding of
+   displacements that are nominally du (measured in a screened chain with
+   dX = du: 1 or 2 sub-steps shift the steady eps0 by 0.6 %).
+
+   Accuracy (measured, test_eq_meso_thermal.cpp): against the slider
+   master equation at (1 + eps) v (ThermalTransient), uniform [0.75,1.25],
+   theta = 0.05 and 0.1, v = 1e-3 ... 1e-1, eps = 0 ... 2, steps dX =
+   du/2, panels of 3.1 du_eff: max |F - F_ref| over X in [0, 4] is 2.95
+   ... 3.35 du_eff^2 (du_eff = (1 + eps) du); halving du, dX and the
+   panel width divides it by 3.8 ... 4.0.  At theta = 0: within 1.1 du^2
+   of the exact renewal solution (constant eps, increments 0.37 du, du =
+   0.005 ... 0.02; eps = 0: 0.66 ... 0.75 du^2, eps = 0.5: 1.03 ... 1.09
+   du^2), and equal to MesoModel to rounding with crossing step.
+
+   Cost: 3 exponentials per (row, panel) holding mass per sub-step; rows
+   holding mass ~ top/((1 + eps) du) or fewer (thermal breaking empties
+   rows before their thresholds), e.g. uniform [0.75,1.25], eps = 5,
+   du = 0.003, 32 panels: ~70 rows, ~7000 exponentials, ~70 us.
+------------------------------------------------------------------------- */
+
+#ifndef FEQ_MESO_THERMAL_H
+#define FEQ_MESO_THERMAL_H
+
+#include "eq_distribution.h"
+#include "eq_master_equation.h"    // Crossing, MEStart
+#include "eq_meso.h"
+#include "eq_thermal.h"
+
+#include <memory>
+#include <vector>
+
+namespace feq {
+
+// what fix eq/meso needs of a block kernel
+class BlockModel {
+ public:
+  virtual ~BlockModel() = default;
+  virtual int width() const = 0;
+  virtual void init(double *state, double X0) const = 0;
+  // move to X1 over the time h (>= 0) with load factor eps (>= 0); returns
+  // the broken mass; X1 == X and h == 0: nothing changes (bitwise)
+  virtual double advance(double *state, double X1, double eps, double h) const = 0;
+  virtual double position(const double *state) const = 0;
+  virtual double mean_stretch(const double *state) const = 0;
+  virtual double attached(const double *state) const = 0;
+  virtual double normalization_error(const double *state) const = 0;
+  virtual bool valid(const double *state) const = 0;
+  virtual double grid() const = 0;
+  virtual double min_grid() const = 0;
+  virtual std::unique_ptr<BlockModel> regrid(double du) const = 0;
+};
+
+// the athermal MesoModel (h ignored: nothing happens at rest)
+class AthermalBlocks : public BlockModel {
+ public:
+  explicit AthermalBlocks(std::unique_ptr<MesoModel> m) : model(std::move(m)) {}
+  int width() const override { return model->width(); }
+  void init(double *s, double X0) const override { model->init(s, X0); }
+  double advance(double *s, double X1, double eps, double) const override
+  {
+    return model->advance(s, X1, eps);
+  }
+  double position(const double *s) const override { return model->position(s); }
+  double mean_stretch(const double *s) const override { return model->mean_stretch(s); }
+  double attached(const double *s) const override { return model->attached(s); }
+  double normalization_error(const double *s) const override
+  {
+    return model->normalization_error(s);
+  }
+  bool valid(const double *s) const override { return model->valid(s); }
+  double grid() const override { return model->grid(); }
+  double min_grid() const override { return model->min_grid(); }
+  std::unique_ptr<BlockModel> regrid(double du) const override
+  {
+    return std::unique_ptr<BlockModel>(new AthermalBlocks(model->regrid(du)));
+  }
+
+ private:
+  std::unique_ptr<MesoModel> model;
+};
+
+// default number of threshold label panels (fix eq/meso keyword 'labels')
+constexpr int MESO_THERMAL_LABELS = 32;
+
+class ThermalMesoModel : public BlockModel {
+ public:
+  // Pc: thresholds; R: delta(0) or nullptr (reform none), anything else a
+  // SpecError; du: anchor grid; nlabels: threshold panels (1 for a point
+  // P_c); spec: theta >= 0, omega, p, q, xc (aging, delay, rest: SpecError).
+  // GridError for a grid too coarse for P_c (as MesoModel) or too fine
+  // (width() > MESO_MAX_WIDTH).
+  ThermalMesoModel(DistributionPtr Pc, DistributionPtr R, double du, const ThermalSpec &spec,
+                   int nlabels = MESO_THERMAL_LABELS, Crossing crossing = Crossing::EXACT,
+                   MEStart start = MEStart::RELAXED);
+
+  int width() const override { return nwidth; }
+  void init(double *state, double X0) const override;
+  // throws std::invalid_argument for non-finite X1, eps < 0 or h < 0
+  double advance(double *state, double X1, double eps, double h) const override;
+  double position(const double *state) const override;
+  double mean_stretch(const double *state) const override;    // at the stored X
+  double attached(const double *state) const override;
+  double detached(const double *state) const;
+  double rate(const double *state) const;    // broken / |dX| of the last call (0: dX = 0)
+  double normalization_error(const double *state) const override;
+  bool valid(const double *state) const override;
+  double grid() const override { return du; }
+  double min_grid() const override;
+  std::unique_ptr<BlockModel> regrid(double du) const override;
+
+  int labels() const { return nl; }
+  double top() const { return ytop; }
+  // rows holding mass (cost measure)
+  long rows(const double *state) const;
+
+ private:
+  DistributionPtr Pc, R;
+  double du, inv_du;
+  ThermalSpec spec;
+  int nlabels_req;
+  Crossing crossing;
+  MEStart start;
+  int nl = 0;    // panels
+  std::vector<double> pa, pb, pw;    // panel ends and weights
+  std::vector<double> coef0, invx0;  // (x_m/x_c)^p/theta and 1/x_m of whole panels
+  double ytop = 0.0;
+  int ncap = 0, nwidth = 0;
+  double tag = 0.0;
+
+  void set_panels();
+  double *row(double *s, long j) const;
+  const double *row(const double *s, long j) const;
+  double rate_at(double y, double inv_xm, double coef) const;
+  void substep(double *s, double X0, double X1, double eps, double h, double &D, double &MX) const;
+  void reform(double *s, double X0, double X1, double D, double MX) const;
+  void trim(double *s) const;
+  void totals(double *s) const;
+};
+
+}    // namespace feq
+
+#endif
