@@ -30,6 +30,9 @@ out/eq-thermal-stickslip.png (the K-v phase diagram and trajectories).
   ./stickslip.py               (about 16 minutes on one core)
   ./stickslip.py --quick       fewer points (3 minutes)
   ./stickslip.py --reuse       re-plot from out/stickslip/stickslip.json
+  ./stickslip.py --meso        also one fix eq/meso block at T > 0 at every
+                               point (in.eq-thermal-meso-stickslip), against
+                               the ME in time on the same grid
 """
 import argparse
 import json
@@ -68,6 +71,18 @@ def eq_run(out, theta, v, Kn, seed=SEED, nx=NX, ny=NY, nprocs=1):
                         "Kn": Kn, "v": v, "slow": SLOW, "dX": DX, "Xend": xend(Kn),
                         "out": out}, nprocs=nprocs, cwd=out)
     d = eqtools.load(out / "slider.dat")    # step Xs X V/v F
+    return {"stage": d[:, 1], "X": d[:, 2], "V_over_v": d[:, 3], "F": d[:, 4]}
+
+
+def meso_run(out, theta, v, Kn):
+    """The same slider as one fix eq/meso block at T > 0 (its contacts are
+    their master equation, on the grid of the ME in time):
+    in.eq-thermal-meso-stickslip; returns dict(stage, X, V_over_v, F)."""
+    out.mkdir(parents=True, exist_ok=True)
+    eqtools.run_lammps(HERE / "in.eq-thermal-meso-stickslip",
+                       {"T": theta, "Kn": Kn, "v": v, "slow": SLOW, "dX": DX, "Xend": xend(Kn),
+                        "grid": ME_GRID["dA"], "labels": ME_GRID["n_labels"], "out": out}, cwd=out)
+    d = eqtools.load(out / "meso-slider.dat")    # step Xs X V/v F
     return {"stage": d[:, 1], "X": d[:, 2], "V_over_v": d[:, 3], "F": d[:, 4]}
 
 
@@ -147,22 +162,35 @@ def _k(k):
 QS_GRID = np.arange(0.05, 3.0, 0.01)    # K of the quasi-static boundary (cheap)
 
 
-def scan(th, v, kgrid, out, cache, nprocs=1):
+def meso_point(out, th, v, Kn):
+    """the fix eq/meso block against the ME in time at one point: its
+    largest jump and the largest distance between the two trajectories"""
+    m, me = meso_run(out, th, v, Kn), me_run(th, v, Kn)
+    n = min(len(m["X"]), len(me["X"]))
+    return {"meso": largest_jump(m), "meso_dev": float(np.max(np.abs(m["X"][:n] - me["X"][:n])))}
+
+
+def scan(th, v, kgrid, out, cache, nprocs=1, meso=False):
     """One (theta, v): K*(v) and the largest jumps at each K of the EQ runs
     and the ME in time (points already in cache are taken from it), the
     quasi-static ME at v on the fine QS_GRID, and the K below which each
-    slips."""
+    slips; with meso also those of one fix eq/meso block."""
     tag = f"th{th:g}_v{v:g}"
     ks, Fme = me_constant_velocity(th, v, out / tag)
-    r = {"kstar": ks, "eq": [], "me": []}
+    r = {"kstar": ks, "eq": [], "me": [], "meso": [], "meso_dev": []}
     for Kn in kgrid:
         key = f"{th:g} {v:g} {Kn:g}"
         if key not in cache:
             cache[key] = {"eq": largest_jump(eq_run(out / tag / f"K{Kn:g}", th, v, Kn,
                                                     nprocs=nprocs)),
                           "me": largest_jump(me_run(th, v, Kn))}
+        if meso and "meso" not in cache[key]:
+            cache[key].update(meso_point(out / tag / f"meso{Kn:g}", th, v, Kn))
         r["eq"].append(cache[key]["eq"])
         r["me"].append(cache[key]["me"])
+        if meso:
+            r["meso"].append(cache[key]["meso"])
+            r["meso_dev"].append(cache[key]["meso_dev"])
     r["qs"] = [largest_jump(quasi_static(Fme, Kn, xend(Kn))) for Kn in kgrid]
     r["eq_boundary"], r["me_boundary"] = boundary(kgrid, r["eq"]), boundary(kgrid, r["me"])
     r["qs_boundary"] = boundary(QS_GRID, [largest_jump(quasi_static(Fme, K, xend(K)))
@@ -173,10 +201,15 @@ def scan(th, v, kgrid, out, cache, nprocs=1):
           "quasi-static at K = " + "  ".join(f"{K:g}: {j:.3f}/{m:.3f}/{q:.3f}" for K, j, m, q
                                             in zip(kgrid, r["eq"], r["me"], r["qs"])),
           flush=True)
+    if meso:
+        print(f"    fix eq/meso block: slips below K = {_k(boundary(kgrid, r['meso']))}; largest "
+              f"jump/largest distance to the ME in time at K = "
+              + "  ".join(f"{K:g}: {j:.4f}/{d:.1e}" for K, j, d in zip(kgrid, r["meso"], r["meso_dev"])),
+              flush=True)
     return r
 
 
-def run(thetas, velocities, kgrid, out, nprocs=1, plot=True, reuse=False):
+def run(thetas, velocities, kgrid, out, nprocs=1, plot=True, reuse=False, meso=False):
     """All (theta, v).  The largest jumps of each point are kept in
     out/stickslip.json and, with reuse, read back from it instead of being
     run again."""
@@ -187,7 +220,7 @@ def run(thetas, velocities, kgrid, out, nprocs=1, plot=True, reuse=False):
     res = {}
     for th in thetas:
         for v in velocities:
-            res[(th, v)] = scan(th, v, kgrid, out, cache, nprocs)
+            res[(th, v)] = scan(th, v, kgrid, out, cache, nprocs, meso)
             path.write_text(json.dumps(cache, indent=1))
     print(f"  total {time.time() - t0:.0f} s")
     if plot:
@@ -260,13 +293,15 @@ def main():
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--reuse", action="store_true",
                     help="take the points already in OUT/stickslip.json")
+    ap.add_argument("--meso", action="store_true",
+                    help="also one fix eq/meso block (in.eq-thermal-meso-stickslip) at every point")
     a = ap.parse_args()
     if a.quick:
         thetas, vels, kgrid = [0.05], [1e-1, 1e-3, 1e-5], [0.2, 0.5, 0.8, 1.2]
     else:
         thetas, vels = [0.02, 0.05], [1e-1, 1e-2, 1e-3, 1e-4, 1e-5]
         kgrid = [0.15, 0.3, 0.45, 0.6, 0.8, 1.0, 1.25, 1.5, 1.8]
-    res = run(thetas, vels, kgrid, Path(a.out), nprocs=a.np, reuse=a.reuse)
+    res = run(thetas, vels, kgrid, Path(a.out), nprocs=a.np, reuse=a.reuse, meso=a.meso)
     bad = agreement(res, kgrid)
     for b in bad:
         print("  WARNING: EQ and the ME in time disagree at theta %g v %g K %g (jump %.3f)" % b)

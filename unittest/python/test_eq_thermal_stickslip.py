@@ -3,7 +3,8 @@ EQ contacts (fix eq/contacts ... thermal, N = 1020) pulled through a spring
 by a stage at velocity v (examples/eq-thermal/in.eq-thermal-stickslip)
 against the master equation in time coupled to the slider's equation of
 motion (tools/eqtools/slider.py, written apart from the C++ and tested on
-its own in test_eqtools_slider.py).
+its own in test_eqtools_slider.py); and one fix eq/meso block at T > 0 in
+place of the EQ slider (in.eq-thermal-meso-stickslip) against the same ME.
 
 Five independent seeds give the mean and its standard error of each
 measured quantity; the tolerance is Student's t (4 dof, two-sided p =
@@ -80,3 +81,42 @@ def test_slips_fade_with_velocity_where_kstar_says_unstable(tmp_path):
         if slip:
             m, se = mean_se(jumps)
             assert abs(m - me_jump) < T_4DOF * se + 2e-4 / K, (v, jumps, me_jump)
+
+
+def test_meso_block_is_the_master_equation_in_time(tmp_path):
+    """One fix eq/meso block at T > 0 (its contacts are their master
+    equation) in place of the EQ slider, theta = 0.05, v = 1e-3, K = 0.5:
+    the C++ block kernel and tools/eqtools/slider.py discretize the same
+    ME on the same grid (anchor cells 4e-3, 16 threshold panels) and were
+    written apart, so their trajectories must agree far below the scheme's
+    own error, measured here as the change of slider.py's trajectory on
+    halving its cells and doubling its panels (a bug of either code, e.g.
+    a rate without its prefactor or a hazard of the wrong step, moves a
+    trajectory by the order of that error or more).  The slip itself:
+    onset and jump as the ME's."""
+    th, v, K = 0.05, 1e-3, 0.5
+    meso = ss.meso_run(tmp_path / "meso", th, v, K)
+    me = ss.me_run(th, v, K)
+    fine = ss.slider.slider_me(K, v, th, lo=ss.LO, hi=ss.HI, slow=ss.SLOW, dX=ss.DX,
+                               Xend=ss.xend(K), n_labels=2 * ss.ME_GRID["n_labels"],
+                               dA=ss.ME_GRID["dA"] / 2)
+    n = min(len(meso["X"]), len(me["X"]), len(fine["X"]))
+    assert n == len(me["X"])
+    scheme_error = np.max(np.abs(fine["X"][:n] - me["X"][:n]))
+    assert scheme_error > 1e-5                  # the comparison resolves the scheme
+    dev = np.max(np.abs(meso["X"][:n] - me["X"][:n]))
+    assert dev < 0.05 * scheme_error, (dev, scheme_error)
+    (o1, j1), (o2, j2) = (max(ss.fast_stretches(r), key=lambda s: s[1]) for r in (meso, me))
+    assert j2 > 2 * ss.SLIP
+    assert abs(o1 - o2) <= ss.WINDOW and abs(j1 - j2) < 0.1 * scheme_error, (o1, o2, j1, j2)
+
+
+def test_meso_block_slips_fade_with_velocity(tmp_path):
+    """The velocity transition of test_slips_fade_with_velocity_where_kstar_says_unstable
+    for one fix eq/meso block: K = 0.75 N k_c, theta = 0.05 slips at v =
+    0.1 and slides smoothly at v = 1e-5, as the ME in time (and unlike
+    the quasi-static criterion K < K*(v), which predicts slips at both)."""
+    th, K = 0.05, 0.75
+    for v, slip in ((0.1, True), (1e-5, False)):
+        jump = ss.largest_jump(ss.meso_run(tmp_path / f"v{v:g}", th, v, K))
+        assert (jump > 2 * ss.SLIP) if slip else (jump < 0.5 * ss.SLIP), (v, jump)
