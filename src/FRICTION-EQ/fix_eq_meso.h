@@ -121,6 +121,7 @@ class FixEQMeso : public FixEQBlocks {
   int grid_default, grid_fresh;
   double window_safe;    // smallest safe window with screening (lib meso_min_window)
   int window_warned;
+  int eps_warned;      // the warning on a load factor beyond the thermal grid's accuracy (this rank)
   double pi0_local;    // largest sum_m Pi_mn of this rank's blocks at the last step
   bigint list_stamp;   // neighbor->ncalls of the partners (-1: none)
   int screened;        // the screening has been computed (pi0_local holds)
@@ -128,6 +129,7 @@ class FixEQMeso : public FixEQBlocks {
   int restored;        // blocks came from a restart file
   void outputs_before_run();
   void check_screened_grid();
+  void check_thermal_grid(int i, double eps);
   void check_window();
   void choose_grid();
   void set_grid(double du);

@@ -26,11 +26,13 @@ using ::testing::HasSubstr;
 
 namespace {
 
-ThermalSpec thermal(double theta)
+ThermalSpec thermal(double theta, double p = 0.0, double q = 0.0)
 {
   ThermalSpec s;
   s.theta = theta;
   s.xc = 1.0;
+  s.p = p;
+  s.q = q;
   return s;
 }
 
@@ -50,12 +52,13 @@ struct VelocityError {
   double transient, steady, relax;    // relax: |F_1 at the end - F_k| (not yet steady)
 };
 VelocityError error_vs_slider(double theta, double v, double eps, double du, int labels,
-                              double dX, double Xmax)
+                              double dX, double Xmax, double p = 0.0, double q = 0.0)
 {
-  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), du, thermal(theta), labels);
+  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), du, thermal(theta, p, q),
+                           labels);
   ThermalSlider sl;
   sl.Pc = make_uniform(0.75, 1.25);
-  sl.spec = thermal(theta);
+  sl.spec = thermal(theta, p, q);
   sl.v = (1.0 + eps) * v;
   const double dx = 5e-4;
   const MEResult ref = thermal_transient(sl, dx, (1.0 + eps) * Xmax + 0.01, true);
@@ -297,4 +300,114 @@ TEST(MesoThermal, ConstantVelocity)
                 c.transient / (eff * eff), f.transient, f.transient / (fine * fine), ratio,
                 f.steady, f.relax);
   }
+}
+
+/* ----------------------------------------------------------------------
+   5. the barrier's exponents: p = 2 (scale (x_s/x_c)^2), q = 0.25
+   (prefactor u^1/4) at constant velocity, as 4.  The panel midpoint
+   threshold now also enters the barrier's scale, a larger second-order
+   term: measured C = 4.9 ... 5.2 du_eff^2 (p = 2, with and without q, du
+   = 0.01 ... 0.0025, converging at second order: ratio near 4); bound
+   C = 8.
+------------------------------------------------------------------------- */
+
+TEST(MesoThermal, ConstantVelocityBarrier)
+{
+  const double du = 0.02;
+  for (double q : {0.0, 0.25}) {
+    const VelocityError c = error_vs_slider(0.05, 1e-2, 0.0, du, 8, 0.5 * du, 4.0, 2.0, q);
+    const VelocityError f = error_vs_slider(0.05, 1e-2, 0.0, 0.5 * du, 16, 0.25 * du, 4.0, 2.0, q);
+    const double ratio = c.transient / f.transient;
+    EXPECT_GT(ratio, 3.0) << "q " << q;
+    EXPECT_LT(ratio, 5.5) << "q " << q;
+    EXPECT_LT(c.transient, 8.0 * du * du) << "q " << q;
+    EXPECT_LT(f.transient, 8.0 * 0.25 * du * du) << "q " << q;
+    std::printf("barrier 2 %g: coarse %.3e (%.2f du^2) fine %.3e (%.2f du^2) ratio %.3f\n", q,
+                c.transient, c.transient / (du * du), f.transient,
+                f.transient / (0.25 * du * du), ratio);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   6. backward moves.  Breaking is one-sided, as in MesoModel (and the
+   master equation): a compressed contact is loaded as an unstretched one,
+   so that at theta -> 0 a block moved forward, back beyond most of its
+   thresholds and forward again is the athermal block (within the two kernels'
+   discretization errors, as AthermalLimit), and a backward move breaks
+   (next to) nothing.
+------------------------------------------------------------------------- */
+
+TEST(MesoThermal, BackwardMovesAthermalLimit)
+{
+  const double du = 0.01, inc = 0.37 * du;
+  for (double eps : {0.0, 0.5}) {
+    const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), du, thermal(1e-3), 16);
+    const MesoModel ma(make_uniform(0.75, 1.25), make_delta(0.0), du);
+    Block b(m);
+    std::vector<double> sa(ma.width());
+    ma.init(sa.data(), 0.0);
+    double X = 0.0, e = 0.0;
+    // forward 2, back 1.2 (compressed beyond most thresholds, within the
+    // largest: u >= -1.2 > -1.25), forward 3
+    for (const auto &leg : {std::make_pair(+1, 2.0), std::make_pair(-1, 1.2),
+                            std::make_pair(+1, 3.0)}) {
+      const long n = long(std::llround(leg.second / inc));
+      double broken_back = 0.0;
+      for (long k = 0; k < n; ++k) {
+        X += leg.first * inc;
+        const double bb = b.go(X, eps, inc / 1e4);
+        if (leg.first < 0) broken_back += bb;
+        ma.advance(sa.data(), X, eps);
+        e = std::max(e, std::fabs(b.F() - ma.mean_stretch(sa.data())));
+      }
+      // only thermal breaks of contacts still stretched as the leg begins
+      // (theta = 1e-3 at these speeds: measured 4e-9 ... 8e-9); with the
+      // two-sided threshold of before, 1/3 of the contacts broke compressed
+      if (leg.first < 0) EXPECT_LT(broken_back, 1e-6) << "eps " << eps;
+    }
+    EXPECT_LT(e, 3.0 * du * du) << "eps " << eps;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   7. the grid's limits in the load factor: beyond eps_valid() ((1 + eps)
+   du past the median threshold) advance() throws GridError, also for a
+   block at rest; eps_accurate() (a quarter of the sd) lies below it; a
+   displacement beyond 4e15 cells is refused (as MesoModel).
+------------------------------------------------------------------------- */
+
+TEST(MesoThermal, GridLimits)
+{
+  const double du = 0.01;
+  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), du, thermal(0.05), 16);
+  const double sd = 0.5 / std::sqrt(12.0);
+  EXPECT_NEAR(m.eps_accurate(), 0.25 * sd / du - 1.0, 1e-12);
+  EXPECT_NEAR(m.eps_valid(), 1.0 / du - 1.0, 1e-9);
+  Block b(m);
+  b.go(0.5, 1.0, 1.0);
+  EXPECT_NO_THROW(b.go(0.5, m.eps_valid() * (1.0 - 1e-9), 0.0));
+  EXPECT_THROW(b.go(0.5, m.eps_valid() * (1.0 + 1e-9), 1.0), GridError);
+  EXPECT_THROW(b.go(0.6, 1e3, 0.0), GridError);
+  EXPECT_THROW(b.go(5e13, 0.0, 1.0), std::invalid_argument);
+  // a point threshold: no conditioning on eps, no limit
+  const ThermalMesoModel mp(make_delta(1.0), make_delta(0.0), du, thermal(0.05), 16);
+  EXPECT_EQ(mp.eps_valid(), HUGE_VAL);
+}
+
+// compressed beyond the largest threshold (u <= -1.25 here) a contact
+// breaks (and re-forms): the anchors held stay within the ring, however
+// far and long the block moves back at T > 0 (before: the ring overflowed)
+TEST(MesoThermal, LongBackwardMove)
+{
+  const double du = 0.01;
+  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), du, thermal(0.2), 16);
+  Block b(m);
+  double X = 0.0;
+  for (int k = 0; k < 300; ++k) b.go(X += 0.005, 0.0, 0.01);
+  double broken = 0.0;
+  for (int k = 0; k < 2000; ++k) broken += b.go(X -= 0.005, 0.0, 1.0);
+  EXPECT_GT(broken, 0.99);    // all were compressed beyond 1.25 or broke thermally
+  EXPECT_LT(m.normalization_error(b.s.data()), 1e-12);
+  EXPECT_LE(m.rows(b.s.data()), long(2.0 * std::ceil(m.top() / du) + 8.0));
+  EXPECT_LT(std::fabs(b.F()), 1.25);
 }

@@ -87,6 +87,10 @@ ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, doub
                     "); use a spacing >= " + fmt(min_grid()) + " or fewer labels");
   ncap = int(rows);
   nwidth = NHEAD + ncap * (nl + 1);
+  if (!Pc->is_point()) {
+    eps_acc = std::max(0.0, 0.25 * sd * inv_du - 1.0);
+    eps_max = std::max(0.0, Pc->quantile(0.5) * inv_du - 1.0);
+  }
   tag = 9.0e9 + double(nwidth) + 1e-3 * double(nl);
 }
 
@@ -193,10 +197,20 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
   for (long j = jlo; j <= jhi; ++j) {
     double *r = row(s, j);
     const double A = double(j) * du;
-    const double d0 = X0 - A, d1 = X1 - A;
+    if (std::min(X0, X1) - A <= -ytop) {    // compressed beyond every threshold
+      const double pos = std::min(Xhi, std::max(Xlo, A - ytop));
+      for (int l = 0; l < nl; ++l) {
+        D += r[1 + l];
+        MX += r[1 + l] * pos;
+        r[1 + l] = 0.0;
+      }
+      continue;
+    }
+    // one-sided: a compressed contact is loaded as an unstretched one
+    const double d0 = std::max(X0 - A, 0.0), d1 = std::max(X1 - A, 0.0);
     const double yj = r[0];    // the thresholds left lie above y_j
     if (thermal) {
-      const double y0 = g * std::fabs(d0), y1 = g * std::fabs(d1), ym = g * std::fabs(Xm - A);
+      const double y0 = g * d0, y1 = g * d1, ym = g * std::max(Xm - A, 0.0);
       for (int l = 0; l < nl; ++l) {
         const double m = r[1 + l];
         if (!(m > 0.0)) continue;
@@ -217,10 +231,9 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
         MX += b * ((n0 * X0 + 4.0 * nm * Xm + n1 * X1) / sum);
       }
     }
-    const double ynew = g * std::max(std::fabs(d0), std::fabs(d1));
+    const double ynew = g * std::max(d0, d1);
     if (!(ynew > yj)) continue;
-    const bool at_start = std::fabs(d0) > std::fabs(d1);    // eps grew: crossed at X0
-    const double sgn = d1 >= 0.0 ? 1.0 : -1.0;
+    const bool at_start = d0 > d1;    // eps grew: crossed at X0
     for (int l = 0; l < nl; ++l) {
       const double m = r[1 + l];
       if (!(m > 0.0)) continue;
@@ -235,7 +248,7 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
       } else {
         continue;
       }
-      const double pos = at_start ? X0 : std::min(Xhi, std::max(Xlo, A + sgn * xb / g));
+      const double pos = at_start ? X0 : std::min(Xhi, std::max(Xlo, A + xb / g));
       r[1 + l] = b == m ? 0.0 : m - b;
       D += b;
       MX += b * pos;
@@ -320,6 +333,17 @@ double ThermalMesoModel::advance(double *s, double X1, double eps, double h) con
     throw std::invalid_argument("screening eps must be finite and >= 0 (got " + fmt(eps) + ")");
   if (!(h >= 0.0) || !std::isfinite(h))
     throw std::invalid_argument("time step must be finite and >= 0 (got " + fmt(h) + ")");
+  // beyond 4e15 cells the anchor index loses integer precision (as MesoModel)
+  if (std::fabs(X1) * inv_du > 4e15)
+    throw std::invalid_argument("block displacement " + fmt(X1) +
+                                " is too large for the anchor grid " + fmt(du));
+  if (eps > eps_max)
+    throw GridError("grid: the load factor eps = " + fmt(eps) + " makes the effective grid (1 + eps) du = " +
+                    fmt((1.0 + eps) * du) + " coarser than the median threshold " +
+                    fmt(Pc->quantile(0.5)) +
+                    ": the screened thresholds x_s/(1 + eps) are not resolved (fresh contacts "
+                    "would inherit the history of older ones); use grid " +
+                    fmt(0.25 * std::sqrt(std::max(0.0, Pc->variance())) / (1.0 + eps)) + " or less");
   const double X0 = s[XPOS];
   if (X1 == X0 && h == 0.0) return 0.0;
   // sub-steps of at most du (1 + 1e-9): a step of du that rounding made
