@@ -505,8 +505,14 @@ void FixEQContacts::apply(bool allow_breaks)
   const EQUtil::Unwrap unwrap(atom, domain, idir);
   long nb = 0;
   try {
-    if (model->thermal_active())
-      nb = scan_thermal(unwrap, allow_breaks, in_setup || !allow_breaks ? 0.0 : update->dt);
+    const double dt = in_setup || !allow_breaks ? 0.0 : update->dt;
+    const bool hot = model->thermal_model().params().thermal();
+    if (model->thermal_active() && unwrap.orthogonal())
+      nb = hot ? scan_thermal<true, true>(unwrap, allow_breaks, dt)
+               : scan_thermal<true, false>(unwrap, allow_breaks, dt);
+    else if (model->thermal_active())
+      nb = hot ? scan_thermal<false, true>(unwrap, allow_breaks, dt)
+               : scan_thermal<false, false>(unwrap, allow_breaks, dt);
     else if (unwrap.orthogonal())
       nb = scan<true>(unwrap, allow_breaks);
     else
@@ -573,46 +579,45 @@ template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap
    next step is measured from it).
 ------------------------------------------------------------------------- */
 
-long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt)
+template <bool ORTHOGONAL, bool THERMAL>
+long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks, double dt)
 {
+  // as scan(): the common step (ContactModel::quick_step()) in line,
+  // everything else out of line (settle_thermal())
+  const EQUtil::Unwrap unwrap = unwrap_arg;
+  const ContactModel &engine = *model;
   const int *const mask = atom->mask;
-  const tagint *const tag = atom->tag;
   const int nlocal = atom->nlocal;
-  double **const f = atom->f;
+  const int bit = groupbit;
+  const bool quick = allow_breaks && dt > 0.0;
+  const std::size_t width = ncol;
+  double *const rows = nlocal > 0 ? state[0] : nullptr;    // nmax x ncol in one block
+  double *const fd = nlocal > 0 ? atom->f[0] + idir : nullptr;
   double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = 0.0;
   long nb = 0;
   for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    double *const st = state[i];
+    if (!(mask[i] & bit)) continue;
+    double *const st = rows + i * width;
     ncount += 1.0;
-    const uint64_t id = static_cast<uint64_t>(tag[i]);
-    if (st[CS_THRESHOLD] == 0.0) model->form(st, id, unwrap(i));
-    // a new run (dt = 0 in its set-up) may come with other parameters
-    if (dt == 0.0) ContactModel::clear_cache(st);
-    const double xu = unwrap(i);
-    if (st[CS_THRESHOLD] > 0.0) {
+    bool done = false;
+    if (quick && st[CS_THRESHOLD] > 0.0) {
+      const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
       const double m = unwrap.stretch(xu - st[CS_ANCHOR]);
-      if (!allow_breaks) {
-        if (st[CT_WAIT] > 0.0) st[CS_ANCHOR] = xu;
-        else st[CS_STRETCH] = m;
-      } else {
-        const ThermalStepResult r = model->step(st, id, m, dt, nb);
-        if (r.attached && r.renewed) {
-          st[CS_ANCHOR] = xu - r.stretch;
-          st[CS_STRETCH] = unwrap.stretch(xu - st[CS_ANCHOR]);
-        } else if (!r.attached && st[CS_THRESHOLD] > 0.0) {
+      if (st[CT_WAIT] > 0.0) {    // absent: its anchor follows its atom
+        if (engine.quick_wait(st, m, dt)) {
           st[CS_ANCHOR] = xu;
+          st[CS_FORCE] = 0.0;
+          continue;
         }
+      } else {
+        done = engine.quick_attached<THERMAL>(st, m, dt);
       }
     }
-    if (!(st[CS_THRESHOLD] > 0.0) || st[CT_WAIT] > 0.0) {
-      st[CS_STRETCH] = st[CS_FORCE] = 0.0;
-      continue;
-    }
+    if (!done && !settle_thermal(i, unwrap_arg, allow_breaks, dt, nb)) continue;
     const double s = st[CS_STRETCH];
     const double fc = st[CS_STIFFNESS] * s;
     st[CS_FORCE] = fc;
-    f[i][idir] -= fc;
+    fd[3 * i] -= fc;
     fsum += fc;
     esum += fc * s;
     ssum += s;
@@ -621,6 +626,40 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks
   local_breaks_total += nb;
   store_sums(fsum, esum, ssum, natt, ncount);
   return nb;
+}
+
+// a contact off the common step: formed, its step taken (or held), its
+// stretch stored; false when it is absent (waiting, detached for good)
+// with stretch and force 0
+bool FixEQContacts::settle_thermal(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks,
+                                   double dt, long &nb)
+{
+  double *const st = state[i];
+  const uint64_t id = static_cast<uint64_t>(atom->tag[i]);
+  if (st[CS_THRESHOLD] == 0.0) model->form(st, id, unwrap(i));
+  // a new run (dt = 0 in its set-up) may come with other parameters
+  if (dt == 0.0) model->new_run(st);
+  const double xu = unwrap(i);
+  if (st[CS_THRESHOLD] > 0.0) {
+    const double m = unwrap.stretch(xu - st[CS_ANCHOR]);
+    if (!allow_breaks) {
+      if (st[CT_WAIT] > 0.0) st[CS_ANCHOR] = xu;
+      else model->hold(st, m);
+    } else {
+      const ThermalStepResult r = model->step(st, id, m, dt, nb);
+      if (r.attached && r.renewed) {
+        st[CS_ANCHOR] = xu - r.stretch;
+        model->hold(st, unwrap.stretch(xu - st[CS_ANCHOR]));
+      } else if (!r.attached && st[CS_THRESHOLD] > 0.0) {
+        st[CS_ANCHOR] = xu;
+      }
+    }
+  }
+  if (!(st[CS_THRESHOLD] > 0.0) || st[CT_WAIT] > 0.0) {
+    st[CS_STRETCH] = st[CS_FORCE] = 0.0;
+    return false;
+  }
+  return true;
 }
 
 // the local sums of a force evaluation (reduced when an output asks)
@@ -960,15 +999,26 @@ void FixEQContacts::check_restored(int i)
       !(st[CT_BUDGET] >= 0.0 && st[CT_AGE] >= 0.0 && st[CT_WAIT] >= 0.0))
     why = fmt::format("hazard budget {}, age {}, delay left {}", st[CT_BUDGET], st[CT_AGE],
                       st[CT_WAIT]);
+  if (why.empty() && model->thermal_active() &&
+      !(st[CT_BOUND_RATE] >= 0.0 && st[CT_CANDIDATE] >= 0.0 &&
+        st[CT_CANDIDATE] == std::floor(st[CT_CANDIDATE]) && st[CT_XS_LOW] >= 0.0))
+    why = fmt::format("rate bound {}, candidate count {}, threshold bound {}", st[CT_BOUND_RATE],
+                      st[CT_CANDIDATE], st[CT_XS_LOW]);
   if (!why.empty())
     error->one(FLERR, "Fix {} eq/contacts: the restart file's contact {} is garbled: {} (a "
                       "corrupt file)", id, atom->tag[i], why);
   if (th > 0.0) check_reach(i, idir, st[CS_ANCHOR], "anchor");
 }
 
-// only where the file holds the other layout of this fix
+// only where the file holds another layout of this fix
 std::string FixEQContacts::layout_hint(long stored) const
 {
+  if (stored == feq::CT_NCOL_HAZARD_BUDGET)
+    return fmt::format("the file was written by an earlier version of the package, whose contacts "
+                       "with the keywords {} kept {} values (thermal breaking against a hazard "
+                       "budget; now sampled by thinning, {} values): such a file cannot be "
+                       "continued; start the run afresh, or continue it with that version",
+                       THERMAL_KEYWORDS, feq::CT_NCOL_HAZARD_BUDGET, static_cast<int>(CT_NCOL));
   if (stored != CS_NCOL && stored != CT_NCOL) return "";
   return fmt::format("the keywords {} add {} values per contact; give one of them in both the run "
                      "that wrote the file and this one, or in neither",

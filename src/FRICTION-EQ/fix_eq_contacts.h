@@ -150,7 +150,8 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   template <bool ORTHOGONAL> long scan(const EQUtil::Unwrap &unwrap, bool allow_breaks);
   bool attached(const double *st) const;
   void store_sums(double fsum, double esum, double ssum, double natt, double ncount);
-  long scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt);
+  template <bool ORTHOGONAL, bool THERMAL> long scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt);
+  bool settle_thermal(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt, long &nb);
   bool settle(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, long &nb);
   void apply_forces();
   void tally(double **f);

@@ -6,10 +6,14 @@
 #include "eq_contact.h"
 #include "eq_distribution.h"
 #include "eq_random.h"
+#include "eq_thermal.h"
 
 #include "gtest/gtest.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -577,4 +581,311 @@ TEST(Avalanche, RunawayIsAnError)
   std::vector<int> members{0, 1}, list;
   std::vector<double> ds;
   EXPECT_THROW(avalanche(m, ra.data(), members.data(), n, 0.0, f, list, ds), BreakError);
+}
+
+/* ----------------------------------------------------------------------
+   thermal breaking by thinning (ContactModel::advance()): the law of the
+   break times and stretches against the analytic survival exp(-int nu dt)
+   (Kolmogorov-Smirnov over many contacts, fixed draws), for steps small
+   and large (exact in law for any dt), barrier forms and aging; and the
+   rate bound it rests on
+------------------------------------------------------------------------- */
+
+namespace {
+
+ContactModel thermal_model(const ThermalSpec &t, bool exact,
+                           DistributionSpec threshold = spec(make_delta(1.0), "delta 1"),
+                           uint64_t seed = 4711)
+{
+  return ContactModel(1.0, seed, std::move(threshold), spec(make_delta(0.0), "delta 0"),
+                      DistributionSpec{}, exact, true, false, t);
+}
+
+ThermalSpec theta_spec(double theta, double p = 0.0, double q = 0.0)
+{
+  ThermalSpec t;
+  t.theta = theta;
+  t.p = p;
+  t.q = q;
+  return t;
+}
+
+// sup |F_n - F| of the sample against the distribution function F
+template <class F> double ks_distance(std::vector<double> x, F cdf)
+{
+  std::sort(x.begin(), x.end());
+  const double n = static_cast<double>(x.size());
+  double d = 0.0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double c = cdf(x[i]);
+    d = std::max(d, std::max(std::fabs(c - i / n), std::fabs((i + 1) / n - c)));
+  }
+  return d;
+}
+
+// the KS bound at level 1e-3 (Kolmogorov: P(sqrt(n) D > 1.95) = 0.001)
+double ks_bound(size_t n)
+{
+  return 1.95 / std::sqrt(static_cast<double>(n));
+}
+
+}    // namespace
+
+// the bound of the rate holds at every stretch within it and every
+// threshold above its own, for all barrier forms, and is attained (to its
+// margin) where the rate is largest
+TEST(Thinning, RateBoundHoldsAndIsTight)
+{
+  for (const double p : {0.0, 2.0})
+    for (const double q : {0.0, 0.25, 1.0}) {
+      ThermalSpec t = theta_spec(0.02, p, q);
+      t.omega = 3.0;
+      const ThermalModel m(t);
+      for (const double xs : {0.6, 1.0, 1.3})
+        for (const double s : {0.0, 0.2, 0.7, 0.95, 0.999, 1.0, 1.2, 1e308}) {
+          const double bound = m.rate_bound(s * xs, xs);
+          double top = 0.0;
+          for (int i = 0; i <= 4000; ++i) {
+            const double x = std::min(s, 1.5) * xs * i / 4000.0;
+            for (const double up : {1.0, 1.0001, 1.1})
+              if (x <= s * xs) {
+                const double nu = m.rate(x, xs * up);
+                ASSERT_LE(nu, bound) << p << " " << q << " " << xs << " " << s << " " << x;
+                top = std::max(top, nu);
+              }
+          }
+          EXPECT_GE(top, bound * (1.0 - 1e-3)) << p << " " << q << " " << xs << " " << s;
+        }
+    }
+}
+
+// held contacts (crossing exact) break after times Exp(nu), for steps
+// much smaller and much larger than 1/nu; with crossing step at the end
+// of the step in which the break happened (geometric in steps)
+TEST(Thinning, HeldContactsBreakAfterExponentialTimes)
+{
+  for (const auto &form : {std::make_pair(0.0, 0.0), std::make_pair(2.0, 0.25)})
+    for (const double dt : {0.01, 0.37, 3.0, 40.0})
+      for (const bool exact : {true, false}) {
+        const ContactModel m = thermal_model(theta_spec(0.1, form.first, form.second), exact);
+        const double x = 0.6, nu = m.thermal_model().rate(x, 1.0);
+        std::vector<double> times;
+        for (uint64_t tag = 1; tag <= 4000; ++tag) {
+          std::vector<double> r(m.columns(), 0.0);
+          m.form(r.data(), tag, 0.0);
+          r[CS_STRETCH] = x;
+          long nb = 0;
+          int k = 0;
+          while (nb == 0) {
+            m.advance(r.data(), tag, x, dt, nb);
+            ++k;
+          }
+          times.push_back(k * dt - r[CT_AGE]);
+        }
+        double d = 0.0;
+        if (exact) {
+          d = ks_distance(times, [&](double t) { return -std::expm1(-nu * t); });
+        } else {    // whole steps: P(K <= k) = 1 - e^{-nu dt k}, compared at each k
+          std::vector<double> count;
+          for (const double t : times) {
+            const size_t k = static_cast<size_t>(std::lround(t / dt));
+            ASSERT_NEAR(t, k * dt, 1e-9 * t) << "at the end of a step";
+            if (count.size() <= k) count.resize(k + 1, 0.0);
+            count[k] += 1.0;
+          }
+          double cum = 0.0;
+          for (size_t k = 0; k < count.size(); ++k) {
+            cum += count[k] / times.size();
+            d = std::max(d, std::fabs(cum + std::expm1(-nu * dt * k)));
+          }
+        }
+        // (crossing step: the law is discrete, the KS bound conservative)
+        EXPECT_LT(d, ks_bound(times.size())) << dt << " " << exact << " q " << form.second;
+      }
+}
+
+// contacts loaded at constant velocity from stretch 0 break at stretch x
+// with P(X > x) = exp(-(1/v) int_0^x nu), or at their threshold (an atom
+// of that weight); with crossing exact the break is placed within the
+// step, and the law holds for any step (thinning is exact in law)
+TEST(Thinning, LoadedContactsBreakWithTheAnalyticSurvival)
+{
+  struct Case {
+    double theta, p, q, beta, dX;
+  };
+  const double v = 1e-3;
+  for (const Case c : {Case{0.05, 0, 0, 0, 0.02}, Case{0.05, 0, 0, 0, 0.3},
+                       Case{0.02, 2, 0.25, 0, 0.05}, Case{0.05, 0, 0, 0.05, 0.01},
+                       Case{0.05, 0, 0.25, 0.05, 0.4}}) {
+    ThermalSpec t = theta_spec(c.theta, c.p, c.q);
+    if (c.beta > 0.0) {
+      t.aging = AgingLaw::LOG;
+      t.beta = c.beta;
+      t.tau_a = 1.0;
+    }
+    const ContactModel m = thermal_model(t, true);
+    const ThermalModel &th = m.thermal_model();
+    // the threshold at stretch x (age x / v) and the cumulative hazard
+    // on a fine grid up to the stretch x* where x = x_s(x / v)
+    auto xs_at = [&](double x) { return th.factor(x / v); };
+    const int n = 200000;
+    double xstar = 1.0;
+    while (xstar < xs_at(xstar)) xstar = xs_at(xstar);    // fixed point (A grows slowly)
+    std::vector<double> H(n + 1, 0.0);
+    for (int j = 0; j < n; ++j) {
+      const double a = xstar * j / n, b = xstar * (j + 1) / n, mid = 0.5 * (a + b);
+      const double nu = th.rate(a, xs_at(a)) + 4.0 * th.rate(mid, xs_at(mid)) + th.rate(b, xs_at(b));
+      H[j + 1] = H[j] + nu * (b - a) / 6.0 / v;
+    }
+    auto cdf = [&](double x) {
+      const double jf = std::min(x / xstar * n, double(n));
+      const int j = std::min(static_cast<int>(jf), n - 1);
+      return -std::expm1(-(H[j] + (jf - j) * (H[j + 1] - H[j])));
+    };
+    const double dt = c.dX / v;
+    std::vector<double> breaks;
+    int at_threshold = 0;
+    const int ncontacts = 4000;
+    for (uint64_t tag = 1; tag <= static_cast<uint64_t>(ncontacts); ++tag) {
+      std::vector<double> r(m.columns(), 0.0);
+      m.form(r.data(), tag, 0.0);
+      long nb = 0;
+      double x = 0.0;
+      while (nb == 0) {
+        x += c.dX;
+        const ThermalStepResult res = m.advance(r.data(), tag, x - r[CS_ANCHOR], dt, nb);
+        if (res.renewed) r[CS_ANCHOR] = x - res.stretch;
+      }
+      const double xb = x - v * r[CT_AGE];
+      ASSERT_GT(xb, x - c.dX - 1e-9) << tag;    // within the step
+      ASSERT_LE(xb, x + 1e-9) << tag;
+      if (xb >= xstar * (1.0 - 1e-9)) ++at_threshold;
+      breaks.push_back(std::min(xb, xstar));
+    }
+    // the atom at x*: KS over the whole law (a jump of F at x*)
+    const double d = ks_distance(breaks, [&](double x) { return x >= xstar * (1.0 - 1e-9) ? 1.0 : cdf(x); });
+    const double p_atom = std::exp(-H[n]);
+    EXPECT_LT(d, ks_bound(breaks.size())) << c.theta << " " << c.q << " " << c.beta << " " << c.dX;
+    EXPECT_LT(std::fabs(at_threshold - ncontacts * p_atom),
+              4.0 * std::sqrt(ncontacts * p_atom * (1.0 - p_atom)) + 1.0)
+        << c.theta << " " << c.q << " " << c.beta << " " << c.dX;
+  }
+}
+
+// the thinning's work in the bench scene (bench_thermal.py: theta 0.02,
+// uniform thresholds, v = 1, dt = 0.01): candidates and refreshes of the
+// bound per life
+TEST(Thinning, FewCandidatesAndRefreshesPerLife)
+{
+  ThermalSpec barrier = theta_spec(0.02, 2.0, 0.25), all = theta_spec(0.02);
+  all.aging = AgingLaw::LOG;
+  all.beta = 0.05;
+  all.delay = DelayKind::EXPONENTIAL;
+  all.tau = 0.1;
+  for (const ThermalSpec &t : {theta_spec(0.02), barrier, all}) {
+    const ContactModel m =
+        thermal_model(t, true, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"));
+    const double v = 1.0, dt = 0.01;
+    long nb = 0, steps = 0;
+    for (uint64_t tag = 1; tag <= 2000; ++tag) {
+      std::vector<double> r(m.columns(), 0.0);
+      m.form(r.data(), tag, 0.0);
+      for (int k = 1; k <= 1000; ++k, ++steps) {
+        const double x = v * dt * k;
+        const ThermalStepResult res = m.step(r.data(), tag, x - r[CS_ANCHOR], dt, nb);
+        if (!res.attached && r[CS_THRESHOLD] > 0.0) r[CS_ANCHOR] = x;
+        else if (res.renewed) r[CS_ANCHOR] = x - res.stretch;
+      }
+    }
+    const ContactModel::SamplerCounts &c = m.sampler_counts();
+    const double lives = static_cast<double>(nb);
+    std::printf("p %g q %g aging %d: per life %.2f candidates, %.2f refreshes; %.1f steps per "
+                "life\n", t.p, t.q, t.aging != AgingLaw::NONE, c.candidates / lives,
+                c.refreshes / lives, steps / lives);
+    EXPECT_LT(c.candidates / lives, 3.0);
+    EXPECT_LT(c.refreshes / lives, 6.0);
+  }
+}
+
+// the bound follows the contact's path and draws, not the steps: a
+// contact loaded at constant velocity breaks at the same stretch (to
+// rounding) whatever the step, with crossing exact
+TEST(Thinning, BreaksDoNotDependOnTheStep)
+{
+  const ContactModel m = thermal_model(theta_spec(0.03, 2.0, 0.25), true,
+                                       spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"));
+  const double v = 1e-2;
+  std::vector<std::vector<double>> at(3);
+  const double steps[3] = {0.001, 0.013, 0.2};
+  for (int k = 0; k < 3; ++k) {
+    for (uint64_t tag = 1; tag <= 200; ++tag) {
+      std::vector<double> r(m.columns(), 0.0);
+      m.form(r.data(), tag, 0.0);
+      long nb = 0;
+      double x = 0.0;
+      while (nb < 5) {    // five lives
+        const long before = nb;
+        x += steps[k];
+        const ThermalStepResult res = m.step(r.data(), tag, x - r[CS_ANCHOR], steps[k] / v, nb);
+        if (res.renewed) r[CS_ANCHOR] = x - res.stretch;
+        if (nb > before) at[k].push_back(x - v * r[CT_AGE]);
+      }
+    }
+  }
+  ASSERT_EQ(at[0].size(), at[1].size());
+  ASSERT_EQ(at[0].size(), at[2].size());
+  for (size_t i = 0; i < at[0].size(); ++i) {
+    EXPECT_NEAR(at[1][i], at[0][i], 1e-9 * (1.0 + at[0][i])) << i;
+    EXPECT_NEAR(at[2][i], at[0][i], 1e-9 * (1.0 + at[0][i])) << i;
+  }
+}
+
+// a new run with the parameters that made the rows changes nothing (a
+// restart, or run after run, continues to the bit), and a row copied
+// midway (an atom that migrates, a restart) goes on as the original
+TEST(Thinning, NewRunAndCopiesContinueToTheBit)
+{
+  ThermalSpec t = theta_spec(0.05, 2.0, 0.25);
+  t.aging = AgingLaw::LOG;
+  t.beta = 0.05;
+  const ContactModel m = thermal_model(t, true, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"));
+  for (uint64_t tag = 1; tag <= 50; ++tag) {
+    std::vector<double> a(m.columns(), 0.0);
+    m.form(a.data(), tag, 0.0);
+    long na = 0, nb = 0;
+    std::vector<double> b;
+    for (int k = 1; k <= 3000; ++k) {
+      const double x = 0.004 * k + 0.2 * std::sin(0.01 * k);
+      if (k == 1500) {
+        b = a;
+        const std::vector<double> before = a;
+        m.new_run(a.data());
+        ASSERT_EQ(0, std::memcmp(a.data(), before.data(), a.size() * sizeof(double))) << tag;
+      }
+      for (std::vector<double> *r : {&a, &b}) {
+        if (r->empty()) continue;
+        const ThermalStepResult res = m.step(r->data(), tag, x - (*r)[CS_ANCHOR], 0.5, r == &a ? na : nb);
+        if (!res.attached && (*r)[CS_THRESHOLD] > 0.0) (*r)[CS_ANCHOR] = x;
+        else if (res.renewed) (*r)[CS_ANCHOR] = x - res.stretch;
+      }
+    }
+    ASSERT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(double))) << tag;
+    EXPECT_GT(na, 3);
+  }
+}
+
+// another temperature in a new run (a restart with other settings): the
+// bound is made anew, valid for it
+TEST(Thinning, NewRunWithOtherParametersRemakesTheBound)
+{
+  const ContactModel cold = thermal_model(theta_spec(0.01), true);
+  const ContactModel hot = thermal_model(theta_spec(0.1), true);
+  std::vector<double> r(cold.columns(), 0.0);
+  cold.form(r.data(), 7, 0.0);
+  long nb = 0;
+  for (int k = 1; k <= 10; ++k) cold.step(r.data(), 7, 0.05 * k, 0.1, nb);
+  ASSERT_GE(r[CT_BOUND_S], 0.0);
+  hot.new_run(r.data());
+  EXPECT_EQ(r[CT_BOUND_RATE], hot.thermal_model().rate_bound(r[CT_BOUND_S], r[CT_XS_LOW]));
+  EXPECT_GE(r[CT_BOUND_RATE], hot.thermal_model().rate(r[CS_STRETCH], r[CS_THRESHOLD]));
 }

@@ -1,8 +1,7 @@
 // Unit tests: temperature, aging and delays of one contact
-// (lib/eq_thermal, ContactModel::advance()).  References: the contact's
-// own exponential budget and closed forms (a held contact breaks when
-// nu t reaches its budget; a delay shifts re-formation by tau; a contact
-// that ages breaks where x = x_s0 A(x/v)), the memoryless law of the
+// (lib/eq_thermal, ContactModel::advance()).  References: closed forms
+// (a delay shifts re-formation by tau; a contact that ages breaks where
+// x = x_s0 A(x/v)), the memoryless law of the
 // break times over many contacts, and the athermal engine (resolve())
 // for the same draws.
 #include "eq_contact.h"
@@ -53,12 +52,6 @@ std::vector<double> row(const ContactModel &m, uint64_t tag)
   return r;
 }
 
-double budget0(uint64_t tag)
-{
-  const Uniform u = draw(4711, tag, 0, STREAM_BUDGET);
-  return -std::log1p(-u.one_minus_u);
-}
-
 }    // namespace
 
 TEST(Thermal, LayoutOnlyWithTheNewTerms)
@@ -68,32 +61,6 @@ TEST(Thermal, LayoutOnlyWithTheNewTerms)
   ThermalSpec a;
   a.aging = AgingLaw::LOG;
   EXPECT_EQ(model(a).columns(), CT_NCOL);
-}
-
-// a contact held at stretch x breaks (crossing exact) at the time its
-// budget E is used up at the rate nu(x): t = E / nu, whatever the step
-TEST(Thermal, HeldContactBreaksWhenItsBudgetIsUsedUp)
-{
-  const ContactModel m = model(thermal(0.05));
-  for (const double dt : {0.37, 3.0, 40.0}) {
-    for (uint64_t tag = 1; tag <= 50; ++tag) {
-      std::vector<double> r = row(m, tag);
-      const double xs = r[CS_THRESHOLD];
-      const double x = 0.8 * xs;    // held here: the atom does not move after the first step
-      const double nu = m.thermal_model().rate(x, xs);
-      r[CS_STRETCH] = x;
-      long nb = 0;
-      int n = 0;
-      while (nb == 0 && n < 100000000) {
-        m.advance(r.data(), tag, x, dt, nb);
-        ++n;
-      }
-      ASSERT_EQ(nb, 1);
-      // the new life began at t_break; its age at the end of step n
-      const double t_break = n * dt - r[CT_AGE];
-      EXPECT_NEAR(t_break, budget0(tag) / nu, 1e-9 * (1.0 + budget0(tag) / nu)) << tag << " " << dt;
-    }
-  }
 }
 
 // over many contacts the break times are exponential with mean 1/nu,
@@ -329,49 +296,5 @@ TEST(Thermal, InlineStepIsAdvance)
   }
 }
 
-// a contact moving at constant velocity breaks where its accumulated
-// hazard (1/v) int_0^x nu dx' reaches its budget: against that integral
-// done finely here (the break within a step placed for a rate that grows
-// exponentially over it: error of second order in the step, where a
-// linear placement would leave a first-order one)
-TEST(Thermal, MovingContactBreaksWhereItsBudgetRunsOut)
-{
-  const ContactModel m = model(thermal(0.05), true, spec(make_delta(1.0), "delta 1"));
-  const double v = 1e-3;
-  double worst[2] = {0.0, 0.0};
-  const double steps[2] = {0.02, 0.005};
-  // the cumulative hazard on a fine grid (Simpson over pairs of panels),
-  // the same threshold (1) for every contact
-  const int n2 = 100000;    // pairs of panels
-  std::vector<double> Hc(n2 + 1, 0.0);
-  for (int j = 0; j < n2; ++j) {
-    const double a = double(j) / n2, b = double(j + 1) / n2;
-    const double nu = m.thermal_model().rate(a, 1.0) + 4.0 * m.thermal_model().rate(0.5 * (a + b), 1.0) +
-        m.thermal_model().rate(b, 1.0);
-    Hc[j + 1] = Hc[j] + nu * (b - a) / 6.0 / v;
-  }
-  for (int k = 0; k < 2; ++k) {
-    const double dX = steps[k], dt = dX / v;
-    for (uint64_t tag = 1; tag <= 30; ++tag) {
-      const double E = budget0(tag);
-      if (Hc[n2] <= E) continue;    // reaches its threshold first
-      const int j = static_cast<int>(std::lower_bound(Hc.begin(), Hc.end(), E) - Hc.begin()) - 1;
-      const double xb = (j + (E - Hc[j]) / (Hc[j + 1] - Hc[j])) / n2;
-      std::vector<double> r = row(m, tag);
-      long nb = 0;
-      int n = 0;
-      double x = 0.0;
-      while (nb == 0) {
-        x = dX * ++n;
-        const ThermalStepResult res = m.advance(r.data(), tag, x - r[CS_ANCHOR], dt, nb);
-        if (res.renewed) r[CS_ANCHOR] = x - res.stretch;
-      }
-      const double x_break = x - v * r[CT_AGE];
-      worst[k] = std::max(worst[k], std::fabs(x_break - xb));
-    }
-  }
-  // second order: a step 4 times smaller, an error at least 8 times smaller
-  EXPECT_LT(worst[0], 2e-4);
-  EXPECT_LT(worst[1], worst[0] / 8.0);
-  std::printf("break point error: dX 0.02: %.3g, dX 0.005: %.3g\n", worst[0], worst[1]);
-}
+// the law of thermal breaks of held and loaded contacts (thinning: exact
+// in law for any step) is tested in test_eq_contact.cpp (Thinning.*)

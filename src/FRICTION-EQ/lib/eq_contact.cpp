@@ -114,8 +114,29 @@ void ContactModel::start_life(double *st, uint64_t tag, uint64_t event, uint32_t
   st[CT_AGE] = 0.0;
   st[CT_WAIT] = 0.0;
   st[CT_PENDING] = 0.0;
-  st[CT_RATE] = st[CT_RATE_LOG] = st[CT_RATE_SMOOTH] = 0.0;
-  clear_cache(st);
+  st[CT_BOUND_RATE] = 0.0;
+  st[CT_BOUND_S] = NO_BOUND;
+  st[CT_CANDIDATE] = off ? CANDIDATE_REENTRY : 0.0;
+  st[CT_XS_LOW] = st[CS_THRESHOLD];
+}
+
+void ContactModel::new_run(double *st) const
+{
+  if (!(st[CS_THRESHOLD] > 0.0)) return;
+  // the threshold now, with this run's aging (the same as the writing
+  // run's, or the lower bound would be kept to the bit)
+  const double xs = st[CS_THRESHOLD] * thermal.factor(st[CT_AGE]);
+  if (!(st[CT_XS_LOW] >= st[CS_THRESHOLD] && st[CT_XS_LOW] <= xs * (1.0 + 1e-12)))
+    st[CT_XS_LOW] = xs;
+  if (!thermal_T) {
+    st[CT_BOUND_S] = NO_BOUND;
+    st[CT_BOUND_RATE] = 0.0;
+  } else if (st[CT_BOUND_S] >= 0.0) {
+    // kept where it holds for this run's rate (made with a lower bound of
+    // the threshold, it is at least the bound made now), else made anew
+    const double bound = thermal.rate_bound(st[CT_BOUND_S], st[CT_XS_LOW]);
+    if (!(st[CT_BOUND_RATE] >= bound * (1.0 - 1e-12))) st[CT_BOUND_RATE] = bound;
+  }
 }
 
 void ContactModel::depart(double *st)
@@ -185,8 +206,8 @@ double ContactModel::break_once(double *st, uint64_t tag, double e, double h, do
 /* ----------------------------------------------------------------------
    one step of a contact with temperature, aging or delays.  The step is
    walked in pieces [f, 1] of its duration: an attached piece ends at a
-   break (threshold crossing, or the budget exhausted by the hazard) or at
-   the end of the step; a waiting piece ends when the delay is over or at
+   break (threshold crossing, or an accepted candidate of the thermal
+   break process: see thin()) or at the end of the step; a waiting piece ends when the delay is over or at
    the end of the step.  With crossing step every break and every
    re-formation happens at the end of the step.
 ------------------------------------------------------------------------- */
@@ -237,6 +258,7 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
     double g = 1.0;    // fraction of the piece at which it breaks
     bool broke = false;
     // the threshold at the end only where the lower bound does not decide
+    double xs_end = 0.0;    // > 0: the threshold at the end, not reached
     if (!(std::fabs(s_b) < st[CT_XS_LOW])) {
       const double xs_b = xs0 * thermal.factor(a_a + h);
       const double d_b = std::fabs(s_b) - xs_b;
@@ -245,35 +267,22 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
         g = d_a < 0.0 ? d_a / (d_a - d_b) : 0.0;
         broke = true;
       } else {
-        st[CT_XS_LOW] = xs_b;
+        xs_end = xs_b;
       }
     }
-    // the rate at the start: cached from the end of the last step if the
-    // contact has not changed since (whole step, attached at its start)
-    RatePoint start, end;
-    if (f == 0.0 && st[CT_RATE_AT] == s_a) {
-      start.nu = st[CT_RATE];
-      start.psi = st[CT_RATE_LOG];
-      start.smooth = st[CT_RATE_SMOOTH] != 0.0;
-    } else if (thermal_T) {
-      start = thermal.start_point(s_a, a_a, xs0);
-    }
-    const double x_g = g == 1.0 ? s_b : s_a + (s_b - s_a) * g;
-    const double dH = thermal.hazard(s_a, x_g, a_a, h * g, xs0, &start, &end);
-    if (dH > 0.0 && dH >= st[CT_BUDGET]) {    // thermal break, first: where the budget runs out
-      g *= ThermalModel::budget_fraction(st[CT_BUDGET] / dH, start, end);
-      broke = true;
+    // a thermal break first, up to the crossing: thinning
+    if (thermal_T && h > 0.0 && g > 0.0) {
+      const double x_g = g == 1.0 ? s_b : s_a + (s_b - s_a) * g;
+      double g_t = 1.0;
+      if (thin(st, tag, s_a, x_g, a_a, h * g, g_t)) {
+        g *= g_t;
+        broke = true;
+      }
     }
     if (!broke) {
-      st[CT_BUDGET] -= dH;
       st[CT_AGE] = a_a + h;    // (a_a + dt for a whole step, as step())
-      st[CS_STRETCH] = s_b;
-      if (h > 0.0 && thermal.params().thermal()) {
-        st[CT_RATE] = end.nu;
-        st[CT_RATE_LOG] = end.psi;
-        st[CT_RATE_SMOOTH] = end.smooth ? 1.0 : 0.0;
-        st[CT_RATE_AT] = s_b;
-      }
+      hold(st, s_b);
+      if (xs_end > 0.0) raise_xs_low(st, xs_end);
       res.stretch = s_b;
       res.attached = true;
       return res;
@@ -314,6 +323,112 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
     } else {
       s_a = sign * r;
     }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   thinning (Lewis & Shedler 1979): the break process of rate nu(t) is
+   the candidate process of rate nu_bar >= nu(t) with each candidate kept
+   with probability nu(t)/nu_bar.  The candidates are counted by a budget
+   Exp(1) of the bound's hazard (memoryless: the bound may change at any
+   time, the budget left goes on); each candidate draws its acceptance
+   and the next budget from (seed, tag, life, candidate index).  Exact in
+   law for a stretch linear within the step, whatever dt.
+------------------------------------------------------------------------- */
+
+namespace {
+constexpr uint32_t CANDIDATE_KEY = 0x43414e44u;    // "CAND": the key of the candidates' draws
+}
+
+void ContactModel::candidate_draw(uint64_t tag, uint64_t life, double k_d, double &accept,
+                                  double &next) const
+{
+  const uint64_t k = static_cast<uint64_t>(k_d);
+  const Philox4x32 out =
+      philox4x32({uint32_t(tag), uint32_t(tag >> 32), uint32_t(life), uint32_t(k)},
+                 {uint32_t(seed), uint32_t(seed >> 32) ^ CANDIDATE_KEY ^ uint32_t(k >> 32) ^
+                      (uint32_t(life >> 32) << 16)});
+  accept = uniform_from_bits((uint64_t(out[0]) << 32) | out[1]).u;
+  next = exponential(uniform_from_bits((uint64_t(out[2]) << 32) | out[3]));
+}
+
+void ContactModel::raise_xs_low(double *st, double xs) const
+{
+  if (xs > st[CT_XS_LOW]) st[CT_XS_LOW] = xs;
+}
+
+double ContactModel::level(double x, double w, double xs) const
+{
+  const double psi = thermal.log_rate_at(x, xs);
+  const double d = thermal.log_omega() - psi;
+  if (!(d > 0.5 * BOUND_LOG_STEP)) return HUGE_VAL;
+  // r e^r = K, K = BOUND_CANDIDATES w (d psi/d|x|) / nu(x): r ~ ln K - ln ln K
+  const double lk = std::log(BOUND_CANDIDATES * w * thermal.log_rate_slope(x, xs)) - psi;
+  double r = BOUND_LOG_STEP;
+  if (lk > 1.0) r = std::max(r, lk - std::log(lk));
+  r = std::min(r, d - d / BOUND_LADDER);
+  return d - r < 0.5 * BOUND_LOG_STEP ? HUGE_VAL : psi + r;
+}
+
+void ContactModel::rebound(double *st, double need, double xs, double L) const
+{
+  ++counts.refreshes;
+  raise_xs_low(st, xs);
+  const double reach = thermal.bound_stretch(L, st[CT_XS_LOW]);
+  st[CT_BOUND_S] = reach == HUGE_VAL ? BOUND_ALL : std::max(need, reach);
+  st[CT_BOUND_RATE] = thermal.rate_bound(st[CT_BOUND_S], st[CT_XS_LOW]);
+}
+
+bool ContactModel::thin(double *st, uint64_t tag, double x0, double x1, double a0, double h,
+                        double &frac) const
+{
+  const bool aging = thermal.params().aging != AgingLaw::NONE;
+  const double xs0 = st[CS_THRESHOLD];
+  auto xs_at = [&](double t) { return aging ? xs0 * thermal.factor(a0 + t) : xs0; };
+  const double w = std::fabs(x1 - x0) / h;    // speed of the stretch
+  if (!(std::fabs(x0) <= st[CT_BOUND_S])) {    // a new life (or a stretch moved while held)
+    const double xs = xs_at(0.0);
+    rebound(st, std::fabs(x0), xs, level(x0, w, xs));
+  }
+  double t = 0.0;    // time into the piece
+  while (true) {
+    // where the path leaves the bound (h: not within the piece)
+    const double sb = st[CT_BOUND_S];
+    double t_out = h;
+    if (!(std::fabs(x1) <= sb)) {
+      const double edge = x1 > 0.0 ? sb : -sb;
+      t_out = std::min(h, std::max(t, h * ((edge - x0) / (x1 - x0))));
+    }
+    const double nu_bar = st[CT_BOUND_RATE];
+    const double avail = nu_bar * (t_out - t);    // (nu_bar dt for a whole step, as step())
+    if (avail < st[CT_BUDGET]) {
+      st[CT_BUDGET] -= avail;
+      if (t_out == h) return false;
+      // a higher bound from where the path left this one
+      t = t_out;
+      const double xs = xs_at(t);
+      rebound(st, sb, xs, level(sb, w, xs));
+      if (!(st[CT_BOUND_S] > sb)) {    // (rounding, extreme exponents): some way beyond
+        st[CT_BOUND_S] = sb + 1e-6 * (sb + xs);
+        st[CT_BOUND_RATE] = thermal.rate_bound(st[CT_BOUND_S], st[CT_XS_LOW]);
+      }
+      continue;
+    }
+    t = std::min(t_out, t + st[CT_BUDGET] / nu_bar);    // a candidate
+    const double x = x0 + (x1 - x0) * (t / h);
+    const double xs = xs_at(t);
+    const double nu = thermal.point(x, xs).nu;
+    double accept, next;
+    candidate_draw(tag, static_cast<uint64_t>(st[CS_NBREAK]), st[CT_CANDIDATE], accept, next);
+    st[CT_CANDIDATE] += 1.0;
+    ++counts.candidates;
+    if (accept * nu_bar < nu) {
+      frac = t / h;
+      return true;
+    }
+    // rejected: the next budget, and a bound fitted to the rate here
+    st[CT_BUDGET] = next;
+    rebound(st, std::fabs(x), xs, level(x, w, xs));
   }
 }
 

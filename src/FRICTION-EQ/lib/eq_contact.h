@@ -57,6 +57,7 @@
 #include "eq_distribution.h"
 #include "eq_thermal.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -78,27 +79,30 @@ enum ContactColumn : int {
 };
 
 // further columns of a contact's row with temperature, aging or delays
-// (eq_thermal.h): the row is then CT_NCOL wide
+// (eq_thermal.h): the row is then CT_NCOL wide.  Thermal breaking is
+// sampled by thinning: candidate breaks come at the constant rate
+// CT_BOUND_RATE >= nu while |s| <= CT_BOUND_S (and x_s >= CT_XS_LOW); a
+// candidate at time t is accepted with probability nu(t)/CT_BOUND_RATE
+// (see ContactModel::advance())
 enum ThermalColumn : int {
-  CT_BUDGET = CS_NCOL,    // hazard the contact can still take before it breaks (Exp(1) at formation)
+  CT_BUDGET = CS_NCOL,    // hazard of the bound left until the next candidate break (Exp(1))
   CT_AGE,                 // time since the contact formed
   CT_WAIT,                // > 0: broken, re-forms after this time (stretch CS_STRETCH is 0)
   CT_PENDING,             // the stretch it re-forms with, while it waits
   CT_OUTPUTS,             // (the columns above are the per-atom output)
-  // caches, written by advance():
-  // the breaking rate (nu, ln nu, whether ln nu holds) at stretch
-  // CT_RATE_AT, its age and threshold as stored, from the end of the last
-  // step: valid while CS_STRETCH == CT_RATE_AT; invalidated
-  // (RATE_UNKNOWN) by form() and clear_cache();
-  CT_RATE = CT_OUTPUTS,
-  CT_RATE_LOG,
-  CT_RATE_SMOOTH,
-  CT_RATE_AT,
-  // a lower bound of the current threshold x_s0 A(age) (A >= 1 and
-  // grows with age): x_s0 at formation and after clear_cache()
+  // the sampler's state (restart data like the rest: the break times depend on it)
+  CT_BOUND_RATE = CT_OUTPUTS,    // nu_bar >= nu while |s| <= CT_BOUND_S (0 without a bound)
+  CT_BOUND_S,                    // the bound holds while |s| <= this; < 0: no bound yet
+  CT_CANDIDATE,                  // candidates drawn in this life (their draws' counter)
+  // a lower bound of the current threshold x_s0 A(age) (A >= 1 and grows
+  // with age): x_s0 at formation
   CT_XS_LOW,
   CT_NCOL
 };
+
+// the width of the thermal row before thinning (a restart file of that
+// layout cannot be continued)
+constexpr int CT_NCOL_HAZARD_BUDGET = 16;
 
 // one step of a contact with temperature, aging or delays
 struct ThermalStepResult {
@@ -126,14 +130,15 @@ class ContactModel {
   int columns() const { return thermal_on ? static_cast<int>(CT_NCOL) : static_cast<int>(CS_NCOL); }
   // the columns that are per-atom output
   int outputs() const { return thermal_on ? static_cast<int>(CT_OUTPUTS) : static_cast<int>(CS_NCOL); }
-  // forget the cached rate (parameters may have changed: a new run)
-  static void clear_cache(double *st)
-  {
-    st[CT_RATE_AT] = RATE_UNKNOWN;
-    st[CT_XS_LOW] = st[CS_THRESHOLD];
-  }
-  // no stretch is this large (thresholds are below 1e300)
-  static constexpr double RATE_UNKNOWN = 1.0e308;
+  // a new run (the parameters may differ from those of the run that
+  // wrote a restart file): the threshold's lower bound and the rate
+  // bound made valid for this run's parameters; unchanged (to the bit)
+  // when they are those that made them
+  void new_run(double *st) const;
+  // no bound of the rate yet (the next step chooses one)
+  static constexpr double NO_BOUND = -1.0;
+  // a bound that holds at any stretch
+  static constexpr double BOUND_ALL = 1.0e308;
   bool thermal_active() const { return thermal_on; }
   const ThermalModel &thermal_model() const { return thermal; }
 
@@ -164,45 +169,99 @@ class ContactModel {
   // of a contact.  m: for an attached contact its stretch at the end of
   // the step (the slider's position minus the anchor), for a waiting one
   // the distance its atom moved in the step; the motion is taken linear in
-  // time.  The contact breaks when |s| reaches x_s0 A(age) or when the
-  // hazard of thermal activation (Simpson's rule over the step) exhausts
-  // its budget; with crossing exact at that instant within the step, the
-  // rest of the motion going into the next life (with crossing step: at
-  // the end of the step).  A broken contact waits its delay, then re-forms.
+  // time.  The contact breaks when |s| reaches x_s0 A(age) or at the first
+  // accepted candidate of the thermal break process (thinning: exact in
+  // law for any dt); with crossing exact at that instant within the step,
+  // the rest of the motion going into the next life (with crossing step:
+  // at the end of the step).  A broken contact waits its delay, then
+  // re-forms.
   ThermalStepResult advance(double *st, uint64_t tag, double m, double dt, long &nbreaks) const;
 
   // advance(), with its most common case inline: an attached contact that
-  // stays below the lower bound of its threshold and within its budget
-  // over a whole step (the same numbers as advance())
+  // stays below the lower bound of its threshold, within its rate bound,
+  // and has no candidate break within the step (the same numbers as
+  // advance())
   ThermalStepResult step(double *st, uint64_t tag, double m, double dt, long &nbreaks) const
   {
-    if (st[CT_WAIT] > 0.0 || !(std::fabs(m) < st[CT_XS_LOW]) || !(dt > 0.0))
-      return advance(st, tag, m, dt, nbreaks);
-    const double s_a = st[CS_STRETCH];
-    if (thermal_T) {
-      RatePoint start, end;
-      const bool have = st[CT_RATE_AT] == s_a;
-      if (have) {
-        start.nu = st[CT_RATE];
-        start.psi = st[CT_RATE_LOG];
-        start.smooth = st[CT_RATE_SMOOTH] != 0.0;
-      }
-      const double dH =
-          thermal.hazard(s_a, m, st[CT_AGE], dt, st[CS_THRESHOLD], have ? &start : nullptr, &end);
-      if (dH > 0.0 && dH >= st[CT_BUDGET]) return advance(st, tag, m, dt, nbreaks);
-      st[CT_BUDGET] -= dH;
-      st[CT_RATE] = end.nu;
-      st[CT_RATE_LOG] = end.psi;
-      st[CT_RATE_SMOOTH] = end.smooth ? 1.0 : 0.0;
-      st[CT_RATE_AT] = m;
-    }
-    st[CT_AGE] += dt;
-    st[CS_STRETCH] = m;
     ThermalStepResult res;
+    if (st[CT_WAIT] > 0.0 && dt > 0.0 && quick_wait(st, m, dt)) return res;
+    if (!quick_step(st, m, dt)) return advance(st, tag, m, dt, nbreaks);
     res.stretch = m;
     res.attached = true;
     return res;
   }
+
+  // step()'s common case alone: true when it applied (the row updated as
+  // advance() would), false when it does not (the row untouched)
+  bool quick_step(double *st, double m, double dt) const
+  {
+    if (st[CT_WAIT] > 0.0 || !(dt > 0.0)) return false;
+    return thermal_T ? quick_attached<true>(st, m, dt) : quick_attached<false>(st, m, dt);
+  }
+
+  // quick_step() for a contact known to be attached (CT_WAIT <= 0), dt > 0,
+  // THERMAL: the model's temperature is > 0.  An attached contact's
+  // stretch is within its bound (|s| <= CT_BOUND_S) or it has none: the
+  // whole step is, when its end is
+  template <bool THERMAL> bool quick_attached(double *st, double m, double dt) const
+  {
+    const double a = std::fabs(m);
+    if (!(a < st[CT_XS_LOW])) return false;
+    if (THERMAL) {
+      if (!(a <= st[CT_BOUND_S])) return false;
+      const double dH = st[CT_BOUND_RATE] * dt;
+      if (!(dH < st[CT_BUDGET])) return false;
+      st[CT_BUDGET] -= dH;
+    }
+    st[CT_AGE] += dt;
+    st[CS_STRETCH] = m;
+    return true;
+  }
+
+  // the stretch of an attached contact set outside a step (no time
+  // passes: minimization, a new anchor): its bound dropped when it no
+  // longer covers it
+  void hold(double *st, double s) const
+  {
+    st[CS_STRETCH] = s;
+    if (!(std::fabs(s) <= st[CT_BOUND_S])) st[CT_BOUND_S] = NO_BOUND;
+  }
+
+  // a waiting contact whose delay lasts beyond this step (m: its atom's
+  // motion): the delay shortened by dt, stretch 0, as advance() does
+  // (which then leaves the contact absent); false (the row untouched)
+  // otherwise
+  bool quick_wait(double *st, double m, double dt) const
+  {
+    if (!(st[CT_WAIT] > (exact ? dt : dt + 1e-9 * dt)) || !std::isfinite(m)) return false;
+    st[CT_WAIT] -= dt;
+    st[CS_STRETCH] = 0.0;
+    return true;
+  }
+
+  // the thinning sampler's choice of bound, from the contact's path and
+  // draws alone (not the step: for a stretch linear in time the break
+  // times do not depend on dt).  A bound made at stretch x, where the
+  // stretch changes at speed w, holds up to where the rate (its barrier
+  // term) reaches e^L, L = ln nu(x) + r: the largest r with about
+  // BOUND_CANDIDATES candidates expected before the stretch gets there
+  // (ln nu taken linear in |x|), at least BOUND_LOG_STEP, at most
+  // (1 - 1/BOUND_LADDER) d, d = ln omega - ln nu(x); the top (any
+  // stretch) once d is below BOUND_LOG_STEP/2 or would be.  It is made
+  // anew for a new life, where the path leaves it, and at a rejected
+  // candidate.
+  static constexpr double BOUND_CANDIDATES = 0.5;
+  static constexpr double BOUND_LADDER = 16.0;
+  static constexpr double BOUND_LOG_STEP = 1.0;
+  // a contact formed again at a re-entry counts its candidates from here
+  // (its draws differ from those of the life before it left)
+  static constexpr double CANDIDATE_REENTRY = 1099511627776.0;    // 2^40
+
+  // counts of the sampler's work on this model (diagnostics, not state)
+  struct SamplerCounts {
+    long candidates = 0, refreshes = 0;
+  };
+  const SamplerCounts &sampler_counts() const { return counts; }
 
   bool reforms() const { return reform.dist != nullptr; }
   bool reform_as_force() const { return reform_force; }
@@ -222,8 +281,25 @@ class ContactModel {
   ThermalModel thermal;
   bool thermal_on, thermal_T;
 
+  mutable SamplerCounts counts;
+
   // a new life of a contact with temperature, aging or delays: budget, age 0
   void start_life(double *st, uint64_t tag, uint64_t event, uint32_t off) const;
+  // the candidates within a piece of duration h in which the stretch goes
+  // linearly from x0 to x1 and the age from a0: true, with the fraction of
+  // the piece at which one was accepted, or false (budget used)
+  bool thin(double *st, uint64_t tag, double x0, double x1, double a0, double h,
+            double &frac) const;
+  // a new bound covering at least |s| <= need, with threshold xs now,
+  // up to where the rate reaches e^L
+  void rebound(double *st, double need, double xs, double L) const;
+  // the level L of a new bound made at stretch x, threshold xs, the
+  // stretch changing at speed w (see BOUND_CANDIDATES)
+  double level(double x, double w, double xs) const;
+  // the threshold's lower bound raised to xs (and the rate bound with it)
+  void raise_xs_low(double *st, double xs) const;
+  // the draws of candidate k of the current life: acceptance uniform, next budget
+  void candidate_draw(uint64_t tag, uint64_t life, double k, double &accept, double &next) const;
   void check_finite(const double *st, uint64_t tag, double m, bool waiting) const;
 
   double draw_reform(uint64_t tag, uint64_t event, uint32_t stream) const;

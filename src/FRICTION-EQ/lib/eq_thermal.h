@@ -38,6 +38,7 @@
 
 #include "eq_distribution.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -84,6 +85,7 @@ class ThermalModel {
   {
   }
   const ThermalSpec &params() const { return spec; }
+  double log_omega() const { return ln_omega; }
 
   // threshold factor A(t) at age t >= 0 (A >= 1, increasing)
   double factor(double age) const
@@ -166,9 +168,64 @@ class ThermalModel {
     return h / 6.0 * (p0.nu + 4.0 * num + p1.nu);
   }
 
+  // thinning of the break process (fix eq/contacts): a bound of the
+  // rate, the largest nu at any stretch |x| <= s with any threshold
+  // >= xs (theta > 0).  With u = 1 - |x|/x_s >= u_min = 1 - s/xs and the
+  // barrier scale (x_s/x_c)^p >= (xs/x_c)^p (p >= 0), nu <= omega g(u),
+  // g(u) = u^q exp(-c u^(3/2)), c = (xs/x_c)^p/theta, whose largest value
+  // on [u_min, 1] is at u_min (q = 0), else at the peak
+  // u* = (2q/(3c))^(2/3) clamped to [u_min, 1].  s >= xs: the largest
+  // rate of all.  A relative margin of 1e-8 covers rounding.
+  double rate_bound(double s, double xs) const
+  {
+    const double c = barrier_scale(xs) * inv_theta;
+    double u = s < xs ? 1.0 - s / xs : 0.0;
+    if (spec.q > 0.0) u = std::min(1.0, std::max(u, std::pow(2.0 * spec.q / (3.0 * c), 2.0 / 3.0)));
+    const double pre = spec.q == 0.0 ? ln_omega : ln_omega + spec.q * std::log(u);
+    return std::exp(pre - c * u * std::sqrt(u)) * (1.0 + 1e-8);
+  }
+
+  // ln nu at stretch x, threshold xs (theta > 0), to rounding; +infinity
+  // at or beyond the threshold (where the barrier is 0)
+  double log_rate_at(double x, double xs) const
+  {
+    const double u = 1.0 - std::fabs(x) / xs;
+    if (!(u > 0.0)) return HUGE_VAL;
+    const double pre = spec.q == 0.0 ? ln_omega : ln_omega + spec.q * std::log(u);
+    return pre - barrier_scale(xs) * u * std::sqrt(u) * inv_theta;
+  }
+
+  // d ln nu / d|x| at stretch x, threshold xs (theta > 0, |x| < xs)
+  double log_rate_slope(double x, double xs) const
+  {
+    const double u = 1.0 - std::fabs(x) / xs;
+    const double g = 1.5 * barrier_scale(xs) * std::sqrt(u) * inv_theta;
+    return (spec.q == 0.0 ? g : g - spec.q / u) / xs;
+  }
+
+  // the stretch |x| at which ln(omega) - c u^(3/2) (ln nu without the
+  // prefactor u^q <= 1) equals L, threshold xs: where a bound of rate
+  // about e^L can end; +infinity when L >= ln omega (any stretch),
+  // negative when even |x| = 0 has a larger rate
+  double bound_stretch(double L, double xs) const
+  {
+    if (!(L < ln_omega)) return HUGE_VAL;
+    const double w = (ln_omega - L) / (barrier_scale(xs) * inv_theta);    // u^(3/2)
+    return xs * (1.0 - std::cbrt(w * w));
+  }
+
  private:
   ThermalSpec spec;
   double inv_theta, inv_xc, ln_omega;
+
+  // the barrier scale (x_s/x_c)^p at threshold xs (to rounding: the
+  // bounds above carry a margin)
+  double barrier_scale(double xs) const
+  {
+    if (spec.p == 0.0) return 1.0;
+    const double r = xs * inv_xc;
+    return spec.p == 2.0 ? r * r : spec.p == 1.0 ? r : std::pow(r, spec.p);
+  }
 
   // ln nu at u = 1 - |x|/xs > 0
   double log_rate(double u, double xs) const
