@@ -8,7 +8,14 @@ Statistics: the contacts are independent.
   stretches whose mean F and second moment F2 the lattice renewal equation
   gives exactly, so z = (F_EQ - F)/sqrt((F2 - F^2)/N) is standard normal
   at each X_j; |z| < 5 over the ~2000 (correlated) points has a false-alarm
-  probability below 2000 * 5.7e-7 = 1.1e-3 (Bonferroni).
+  probability below 2000 * 5.7e-7 = 1.1e-3 (Bonferroni).  Where the
+  expected number of breaks is small (the first thermal breaks: 0.015
+  expected at one point) F_EQ is not normal: a single break moves it by up
+  to x_max/N, z = 1/sqrt(0.015) = 8.  So the bound is 5 sd plus RARE = 3
+  contacts' worth of stretch (x_max = 2 bounds every stretch here, aging
+  included): k unexpected breaks with k > 3 where 0.015 are expected have
+  probability 2e-9, and in the bulk (sd ~ 2.5e-3) the extra 6e-4 is a
+  quarter of one sd.
 - Steady state (crossing exact): each contact's stretch averaged over the
   second half of the run is independent between contacts; their mean has
   the standard error sd/sqrt(N) from the N values themselves.  The run
@@ -29,6 +36,7 @@ ROOT = Path(__file__).resolve().parents[2]
 INPUT = ROOT / "examples" / "eq-thermal" / "in.eq-thermal"
 STATE = ROOT / "unittest" / "python" / "inputs" / "in.contacts-state"
 ZMAX = 5.0
+RARE, X_MAX = 3, 2.0    # breaks beyond the normal law where few are expected; largest stretch
 
 
 def run(tmp, contacts, v, dX=2e-3, Xhalf=2.0, n=100, nprocs=1, seed=4711):
@@ -101,7 +109,9 @@ def test_transient_follows_the_discrete_rule(tmp_path, case, v):
     # spread is 0 and only rounding (x - anchor) is left
     sd = np.sqrt(np.maximum(F2r - Fr ** 2, 0.0) / N) + 1e-12 * (1.0 + Fr)
     z = (F - Fr)[1:] / sd[1:]
-    assert np.max(np.abs(z)) < ZMAX, (case, np.argmax(np.abs(z)), np.max(np.abs(z)))
+    bound = ZMAX * sd[1:] + RARE * X_MAX / N
+    worst = np.argmax(np.abs(F - Fr)[1:] / bound)
+    assert np.all(np.abs(F - Fr)[1:] < bound), (case, worst, z[worst], (F - Fr)[1 + worst])
     # the curve is not trivially matched: it rises and has broken contacts
     assert Fr.max() > 0.2
 

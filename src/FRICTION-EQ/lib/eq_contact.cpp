@@ -336,20 +336,12 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
    law for a stretch linear within the step, whatever dt.
 ------------------------------------------------------------------------- */
 
-namespace {
-constexpr uint32_t CANDIDATE_KEY = 0x43414e44u;    // "CAND": the key of the candidates' draws
-}
-
 void ContactModel::candidate_draw(uint64_t tag, uint64_t life, double k_d, double &accept,
                                   double &next) const
 {
-  const uint64_t k = static_cast<uint64_t>(k_d);
-  const Philox4x32 out =
-      philox4x32({uint32_t(tag), uint32_t(tag >> 32), uint32_t(life), uint32_t(k)},
-                 {uint32_t(seed), uint32_t(seed >> 32) ^ CANDIDATE_KEY ^ uint32_t(k >> 32) ^
-                      (uint32_t(life >> 32) << 16)});
-  accept = uniform_from_bits((uint64_t(out[0]) << 32) | out[1]).u;
-  next = exponential(uniform_from_bits((uint64_t(out[2]) << 32) | out[3]));
+  const CandidateDraws d = draw_candidate(seed, tag, life, static_cast<uint64_t>(k_d));
+  accept = d.accept;
+  next = d.next;
 }
 
 void ContactModel::raise_xs_low(double *st, double xs) const

@@ -102,6 +102,25 @@ inline Uniform draw(uint64_t seed, uint64_t tag, uint64_t event, uint32_t stream
   return uniform_from_bits((uint64_t(out[0]) << 32) | out[1]);
 }
 
+// The draws of candidate k of a contact's life (thermal breaking by
+// thinning, eq_contact.cpp): the acceptance u and the Exp(1) budget to the
+// next candidate, from one Philox block keyed apart from draw()'s by
+// CANDIDATE_KEY ("CAND") in the key's upper word.
+constexpr uint32_t CANDIDATE_KEY = 0x43414e44u;
+struct CandidateDraws {
+  double accept;    // uniform in (0, 1)
+  double next;      // Exp(1)
+};
+inline CandidateDraws draw_candidate(uint64_t seed, uint64_t tag, uint64_t life, uint64_t k)
+{
+  const Philox4x32 out =
+      philox4x32({uint32_t(tag), uint32_t(tag >> 32), uint32_t(life), uint32_t(k)},
+                 {uint32_t(seed), uint32_t(seed >> 32) ^ CANDIDATE_KEY ^ uint32_t(k >> 32) ^
+                      (uint32_t(life >> 32) << 16)});
+  return {uniform_from_bits((uint64_t(out[0]) << 32) | out[1]).u,
+          exponential(uniform_from_bits((uint64_t(out[2]) << 32) | out[3]))};
+}
+
 }    // namespace feq
 
 #endif
