@@ -807,6 +807,38 @@ TEST(Thinning, FewCandidatesAndRefreshesPerLife)
   }
 }
 
+// the prefactor u^q (barrier 0 q): slow loading (v = 1e-3) of one
+// threshold, where the band's level once fell below the stretch and the
+// bound crept on (5e3 bounds per life at q = 0.5, 6e4 at q = 1, 8e4 at
+// q = 2 and theta = 0.1): a few bounds and candidates per life, as q = 0
+TEST(Thinning, PrefactorKeepsFewBoundsPerLife)
+{
+  for (const double q : {0.0, 0.5, 1.0, 2.0}) {
+    const double theta = q == 2.0 ? 0.1 : 0.02;
+    const ContactModel m = thermal_model(theta_spec(theta, 0.0, q), true,
+                                         spec(make_delta(1.0), "delta 1.0"));
+    const double v = 1e-3, dt = 0.1;
+    long nb = 0;
+    for (uint64_t tag = 1; tag <= 50; ++tag) {
+      std::vector<double> r(m.columns(), 0.0);
+      m.form(r.data(), tag, 0.0);
+      for (int k = 1; k <= 20000; ++k) {
+        const double x = v * dt * k;
+        const ThermalStepResult res = m.step(r.data(), tag, x - r[CS_ANCHOR], dt, nb);
+        if (!res.attached && r[CS_THRESHOLD] > 0.0) r[CS_ANCHOR] = x;
+        else if (res.renewed) r[CS_ANCHOR] = x - res.stretch;
+      }
+    }
+    const ContactModel::SamplerCounts &c = m.sampler_counts();
+    const double lives = static_cast<double>(nb);
+    std::printf("q %g theta %g: %.0f lives, per life %.2f candidates, %.2f bounds\n", q, theta,
+                lives, c.candidates / lives, c.refreshes / lives);
+    ASSERT_GT(lives, 50.0);
+    EXPECT_LT(c.candidates / lives, 6.0) << "q " << q;
+    EXPECT_LT(c.refreshes / lives, 12.0) << "q " << q;
+  }
+}
+
 // the bound follows the contact's path and draws, not the steps: a
 // contact loaded at constant velocity breaks at the same stretch (to
 // rounding) whatever the step, with crossing exact

@@ -349,13 +349,19 @@ void ContactModel::raise_xs_low(double *st, double xs) const
   if (xs > st[CT_XS_LOW]) st[CT_XS_LOW] = xs;
 }
 
+// the level L of a new bound at stretch x: the band ends where the
+// barrier's log rate (the log rate without the prefactor u^q <= 1, which
+// increases with |x|: bound_stretch() solves it) has risen by r.  With
+// the prefactor in psi (q > 0) the band could end below x near the
+// threshold and the bound crept on by 1e-6 (tens of thousands of bounds
+// per life at q = 1); rate_bound() covers the prefactor's peak.
 double ContactModel::level(double x, double w, double xs) const
 {
-  const double psi = thermal.log_rate_at(x, xs);
+  const double psi = thermal.log_barrier_rate_at(x, xs);
   const double d = thermal.log_omega() - psi;
   if (!(d > 0.5 * BOUND_LOG_STEP)) return HUGE_VAL;
   // r e^r = K, K = BOUND_CANDIDATES w (d psi/d|x|) / nu(x): r ~ ln K - ln ln K
-  const double lk = std::log(BOUND_CANDIDATES * w * thermal.log_rate_slope(x, xs)) - psi;
+  const double lk = std::log(BOUND_CANDIDATES * w * thermal.log_barrier_rate_slope(x, xs)) - psi;
   double r = BOUND_LOG_STEP;
   if (lk > 1.0) r = std::max(r, lk - std::log(lk));
   r = std::min(r, d - d / BOUND_LADDER);

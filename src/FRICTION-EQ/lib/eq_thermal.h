@@ -203,6 +203,21 @@ class ThermalModel {
     return (spec.q == 0.0 ? g : g - spec.q / u) / xs;
   }
 
+  // ln omega - c u^(3/2): ln nu without the prefactor u^q <= 1 (an upper
+  // bound of ln nu, increasing in |x|), +infinity at or beyond the
+  // threshold; and its slope in |x| (theta > 0, |x| < xs)
+  double log_barrier_rate_at(double x, double xs) const
+  {
+    const double u = 1.0 - std::fabs(x) / xs;
+    if (!(u > 0.0)) return HUGE_VAL;
+    return ln_omega - barrier_scale(xs) * u * std::sqrt(u) * inv_theta;
+  }
+  double log_barrier_rate_slope(double x, double xs) const
+  {
+    const double u = 1.0 - std::fabs(x) / xs;
+    return 1.5 * barrier_scale(xs) * std::sqrt(u) * inv_theta / xs;
+  }
+
   // the stretch |x| at which ln(omega) - c u^(3/2) (ln nu without the
   // prefactor u^q <= 1) equals L, threshold xs: where a bound of rate
   // about e^L can end; +infinity when L >= ln omega (any stretch),
