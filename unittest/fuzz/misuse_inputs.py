@@ -200,6 +200,8 @@ S_DISORDER = " disorder gaussian 1.0 0.05 9"
 S_THERMAL = S_ARGS + " reverse break thermal 0.3 1.0 5.0 seed 5"
 MP_ARGS = "100 1.0 threshold gaussian 1.0 0.25 reform gaussian 0.05 0.1 drive 10.0 1.0 check 50"
 MS_ARGS = "100 1.0 threshold uniform 0.75 1.25 reform delta 0.0 grid 0.02 screen 0.001 1.0 1.5"
+# the blocks at T > 0 (the thermal kernel: anchors x 8 threshold panels)
+MS_THERMAL = MS_ARGS + " thermal 0.05 1.0 1.0 labels 8"
 
 
 def pair_lines(kind, rcut, coeff):
@@ -451,6 +453,10 @@ def gen_unfix_within(b):
     hops = substrate_system("elastic", S_THERMAL)
     hops.name += "-thermal"
     systems.append(hops)
+    mt = meso_system("elastic", MP_ARGS.replace("reform gaussian 0.05 0.1", "reform delta 0.0")
+                     + " grid 0.05 thermal 0.05 1.0 1.0 labels 8")
+    mt.name += "-thermal"
+    systems.append(mt)
     for s in systems:
         for aid, cmds, exp in within_actions(s):
             every = 25 if aid.endswith("-late") else 10
@@ -750,6 +756,22 @@ def gen_restart_args(b):
     for aid, args, same in free:
         b.add(cls, f"meso.{aid}", restart_case(mbase, fm + args, refs if same else [], thermo=th), ok())
     b.add(cls, "meso.unchanged", restart_case(mbase, fm + MS_ARGS, refs, thermo=th), ok())
+    # at T > 0: another kind of state (thermal added or dropped), and the
+    # thermal values are in the signature (the stored panels and
+    # histories belong to them); crossing and window may change
+    tm = meso_system("none", MS_THERMAL)
+    tm.name += "-thermal"
+    for aid, args, expect in [
+            ("thermal-added", MS_THERMAL, err(r"Fix \S+ eq/meso", r"\bthermal\b")),
+            ("T", MS_THERMAL.replace("thermal 0.05", "thermal 0.1"), restart_err("eq/meso", "thermal")),
+            ("labels", MS_THERMAL.replace("labels 8", "labels 16"), restart_err("eq/meso", "thermal"))]:
+        b.add(cls, f"meso-thermal.{aid}", restart_case(mbase if aid == "thermal-added" else tm,
+                                                       fm + args, []), expect)
+    b.add(cls, "meso-thermal.dropped", restart_case(tm, fm + MS_ARGS, []),
+          err(r"Fix \S+ eq/meso", r"\bthermal\b"))
+    b.add(cls, "meso-thermal.unchanged", restart_case(tm, fm + MS_THERMAL, refs, thermo=th), ok())
+    b.add(cls, "meso-thermal.window", restart_case(tm, fm + MS_THERMAL + " window 0.5", [], thermo=th),
+          ok())
     pm = meso_system("elastic")
     b.add(cls, "meso-elastic.unchanged",
           restart_case(pm, fm + MP_ARGS, [("F", "f_m[1]"), ("X", "f_m[4]"), ("stage", "f_m[7]")],
@@ -1117,6 +1139,11 @@ def gen_box_atoms(b):
     for aid, cmds in [("plain", []), ("displace-random", ["displace_atoms all random 0.05 0.05 0.0 4711 units box"]),
                       ("delete", ["group gone id 3 17 22", "delete_atoms group gone"])]:
         b.add(cls, f"substrate-disorder.{aid}", box_case(s, cmds), ok())
+    # meso blocks at T > 0: their panels migrate with them
+    s = meso_system("none", MS_THERMAL)
+    for aid, cmds in [("plain", []), ("displace-random", ["displace_atoms all random 0.05 0.05 0.0 4711 units box"]),
+                      ("delete", ["group gone id 3 17 22", "delete_atoms group gone"])]:
+        b.add(cls, f"meso-thermal.{aid}", box_case(s, cmds), ok())
     # thermal hops: the blocks' budgets and lives migrate with them
     s = substrate_system("elastic", S_THERMAL)
     for aid, cmds in [("plain", []), ("displace-random", ["displace_atoms all random 0.05 0.05 0.0 4711 units box"]),
