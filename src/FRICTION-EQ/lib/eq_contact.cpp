@@ -20,23 +20,17 @@
 ------------------------------------------------------------------------- */
 
 #include "eq_contact.h"
+#include "eq_text.h"
 
 #include "eq_random.h"
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace feq {
 
 namespace {
-std::string num(double v)
-{
-  std::ostringstream o;
-  o.precision(10);
-  o << v;
-  return o.str();
-}
+std::string num(double v) { return format_number(v, 10); }
 }    // namespace
 
 ContactModel::ContactModel(double kc, uint64_t seed_, const DistributionSpec &threshold_,

@@ -20,6 +20,7 @@
 ------------------------------------------------------------------------- */
 
 #include "eq_distribution.h"
+#include "eq_text.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -43,13 +44,7 @@ const double SQRT2 = 1.4142135623730950488;
 const double INV_SQRT2PI = 0.39894228040143267794;
 const double EPS = std::numeric_limits<double>::epsilon();
 
-std::string fmtnum(double v)
-{
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
+std::string fmtnum(double v) { return format_number(v, 10); }
 
 double clamp(double x, double lo, double hi)
 {

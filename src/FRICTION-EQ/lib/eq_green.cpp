@@ -20,6 +20,7 @@
 ------------------------------------------------------------------------- */
 
 #include "eq_green.h"
+#include "eq_text.h"
 
 #include <fftw3.h>
 #include <sys/resource.h>
@@ -45,12 +46,7 @@ double now()
   return std::chrono::duration<double>(clk::now().time_since_epoch()).count();
 }
 
-std::string num(double v, int digits = 12)
-{
-  std::ostringstream s;
-  s << std::setprecision(digits) << v;
-  return s.str();
-}
+std::string num(double v, int digits = 12) { return format_number(v, digits); }
 
 }    // namespace
 

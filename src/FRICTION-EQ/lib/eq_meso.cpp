@@ -20,12 +20,12 @@
 ------------------------------------------------------------------------- */
 
 #include "eq_meso.h"
+#include "eq_text.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 namespace feq {
@@ -69,13 +69,7 @@ inline double clamp(double x, double lo, double hi)
   return x < lo ? lo : (x > hi ? hi : x);
 }
 
-std::string fmt(double v)
-{
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+std::string fmt(double v) { return format_number(v, 6); }
 
 // v rounded up to 4 significant digits (an "allowed value" that is allowed)
 double round_up4(double v)

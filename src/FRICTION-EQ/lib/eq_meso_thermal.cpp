@@ -20,11 +20,11 @@
 ------------------------------------------------------------------------- */
 
 #include "eq_meso_thermal.h"
+#include "eq_text.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <sstream>
 #include <stdexcept>
 
 namespace feq {
@@ -37,13 +37,7 @@ const double SPLIT_SLACK = 1e-9;    // relative excess of du a sub-step may have
 
 enum Slot { TAG, XPOS, JLO, JHI, RATE, DET, MASS, STRETCH, NHEAD };
 
-std::string fmt(double v)
-{
-  std::ostringstream o;
-  o.precision(6);
-  o << v;
-  return o.str();
-}
+std::string fmt(double v) { return format_number(v, 6); }
 
 }    // namespace
 

@@ -20,6 +20,7 @@
 ------------------------------------------------------------------------- */
 
 #include "eq_substrate.h"
+#include "eq_text.h"
 
 #include "eq_distribution.h"    // SpecError
 #include "eq_random.h"
@@ -32,12 +33,7 @@
 namespace feq {
 
 namespace {
-std::string num(double v)
-{
-  std::ostringstream s;
-  s << std::setprecision(10) << v;
-  return s.str();
-}
+std::string num(double v) { return format_number(v, 10); }
 }    // namespace
 
 SubstrateShape SubstrateShape::sawtooth(double uc)
