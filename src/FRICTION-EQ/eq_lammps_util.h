@@ -96,6 +96,9 @@ namespace EQUtil {
       if (wrapfix && std::fabs(s) > 0.5 * wrap) s -= wrap * std::round(s / wrap);
       return s;
     }
+    // stretch(s) returns s unchanged for |s| below this (infinite where
+    // the coordinate has no wrap)
+    double stretch_reach() const { return wrapfix ? 0.5 * wrap : HUGE_VAL; }
     // a displacement x_u - site of atom i that can grow without bound,
     // from prev, its value at the last evaluation (the atom moved by less
     // than IMGMAX box lengths since): where the image count wrapped in
