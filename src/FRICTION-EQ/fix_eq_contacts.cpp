@@ -493,11 +493,12 @@ void FixEQContacts::post_run()
 /* ----------------------------------------------------------------------
    contact forces -k_i s_i and the sums of the output; breaking (without
    interaction: each contact on its own) when allowed.  One pass in index
-   order; a contact that forms or breaks goes out of line (settle()), and
-   the rest of the loop makes no call and reads everything by offset from
-   local copies that no store to the rows can alias, so that its sums and
-   pointers stay in registers (issue 24: 8.0 -> 5.2 ns per contact-step,
-   the same numbers to the last bit)
+   order; one test picks the common step, and a contact that forms,
+   breaks or needs the unwrap's correction goes out of line (settle_scan(),
+   settle_thermal_scan()); the rest of the loop makes no call and reads
+   everything by offset from local copies that no store to the rows can
+   alias, so that its sums and pointers stay in registers (issue 24: 8.0
+   -> 5.2 -> 4.3 ns per contact-step, the same numbers to the last bit)
 ------------------------------------------------------------------------- */
 
 void FixEQContacts::apply(bool allow_breaks)
@@ -529,8 +530,8 @@ template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap
   // the common step in line: a formed contact (x_s > 0) whose stretch is
   // below its threshold less the tolerance and below the reach of the
   // unwrap's correction (so that the correction is the identity).  One
-  // test covers them all (x_s <= 0 fails it).  Every other contact goes
-  // out of line (settle_scan()), with the same numbers as before.
+  // test covers them all (x_s <= 0 fails it).  Contacts detached for good
+  // stay in line; every other contact goes out of line (settle_scan()).
   const EQUtil::Unwrap unwrap = unwrap_arg;
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
@@ -548,9 +549,12 @@ template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap
     ncount += 1.0;
     const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
     double s = xu - st[CS_ANCHOR];
-    const double tol = rel > 0.0 ? rel * (1.0 + std::fabs(st[CS_ANCHOR]) + std::fabs(s)) : 0.0;
+    const double tol = ContactModel::tolerance(st[CS_ANCHOR], s, rel);
     if (std::fabs(s) < std::min(st[CS_THRESHOLD] - tol, reach)) {
       st[CS_STRETCH] = s;
+    } else if (st[CS_THRESHOLD] < 0.0) {    // detached for good
+      st[CS_STRETCH] = st[CS_FORCE] = 0.0;
+      continue;
     } else {
       if (!settle_scan(i, unwrap_arg, allow_breaks, nb)) continue;
       s = st[CS_STRETCH];
@@ -623,7 +627,7 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
     const bool common = quick && st[CS_THRESHOLD] > 0.0 && !(st[CT_WAIT] > 0.0) &&
         std::fabs(s) < reach && engine.quick_attached<THERMAL>(st, s, dt);
     if (!common) {
-      if (!settle_thermal_scan(i, unwrap_arg, allow_breaks, dt, nb)) continue;
+      if (!settle_thermal_scan(i, unwrap_arg, xu, allow_breaks, dt, nb)) continue;
       s = st[CS_STRETCH];
     }
     const double fc = st[CS_STIFFNESS] * s;
@@ -639,14 +643,14 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
   return nb;
 }
 
-// scan_thermal()'s contacts off the common step: a waiting contact whose
-// delay goes on (its anchor follows its atom), or settle_thermal()
-bool FixEQContacts::settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks,
-                                        double dt, long &nb)
+// scan_thermal()'s contacts off the common step (xu: the atom's unwrapped
+// coordinate): a waiting contact whose delay goes on (its anchor follows
+// its atom), or settle_thermal()
+inline bool FixEQContacts::settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, double xu,
+                                               bool allow_breaks, double dt, long &nb)
 {
   double *const st = state[i];
   if (allow_breaks && dt > 0.0 && st[CS_THRESHOLD] > 0.0 && st[CT_WAIT] > 0.0) {
-    const double xu = unwrap(i);
     if (model->quick_wait(st, unwrap.stretch(xu - st[CS_ANCHOR]), dt)) {
       st[CS_ANCHOR] = xu;
       st[CS_FORCE] = 0.0;
