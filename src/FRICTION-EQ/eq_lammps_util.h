@@ -31,6 +31,15 @@
 #include <cmath>
 #include <string>
 
+// a branch taken rarely (the slow path of a hot loop): the compiler keeps
+// the loop's sums in registers and spills them around the call of the
+// slow path only
+#if defined(__GNUC__)
+#define FEQ_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#else
+#define FEQ_UNLIKELY(x) (x)
+#endif
+
 namespace LAMMPS_NS {
 class LAMMPS;
 class Atom;

@@ -550,14 +550,16 @@ template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap
     const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
     double s = xu - st[CS_ANCHOR];
     const double tol = ContactModel::tolerance(st[CS_ANCHOR], s, rel);
-    if (std::fabs(s) < std::min(st[CS_THRESHOLD] - tol, reach)) {
-      st[CS_STRETCH] = s;
-    } else if (st[CS_THRESHOLD] < 0.0) {    // detached for good
-      st[CS_STRETCH] = st[CS_FORCE] = 0.0;
-      continue;
-    } else {
+    const bool common = std::fabs(s) < std::min(st[CS_THRESHOLD] - tol, reach);
+    if (FEQ_UNLIKELY(!common)) {
+      if (st[CS_THRESHOLD] < 0.0) {    // detached for good
+        st[CS_STRETCH] = st[CS_FORCE] = 0.0;
+        continue;
+      }
       if (!settle_scan(i, unwrap_arg, allow_breaks, nb)) continue;
       s = st[CS_STRETCH];
+    } else {
+      st[CS_STRETCH] = s;
     }
     const double fc = st[CS_STIFFNESS] * s;
     st[CS_FORCE] = fc;
@@ -626,7 +628,7 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
     // its correction is the identity) and quick_attached()
     const bool common = quick && st[CS_THRESHOLD] > 0.0 && !(st[CT_WAIT] > 0.0) &&
         std::fabs(s) < reach && engine.quick_attached<THERMAL>(st, s, dt);
-    if (!common) {
+    if (FEQ_UNLIKELY(!common)) {
       if (!settle_thermal_scan(i, unwrap_arg, xu, allow_breaks, dt, nb)) continue;
       s = st[CS_STRETCH];
     }
@@ -646,8 +648,8 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
 // scan_thermal()'s contacts off the common step (xu: the atom's unwrapped
 // coordinate): a waiting contact whose delay goes on (its anchor follows
 // its atom), or settle_thermal()
-inline bool FixEQContacts::settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, double xu,
-                                               bool allow_breaks, double dt, long &nb)
+bool FixEQContacts::settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, double xu,
+                                        bool allow_breaks, double dt, long &nb)
 {
   double *const st = state[i];
   if (allow_breaks && dt > 0.0 && st[CS_THRESHOLD] > 0.0 && st[CT_WAIT] > 0.0) {
