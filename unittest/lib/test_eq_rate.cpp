@@ -110,10 +110,9 @@ TEST(Rate, ViscousBelowV0)
 }
 
 // the derivative against a central difference with step h: truncation
-// h^2 |F'''|/6 <= h^2 A/(8 v0^3)/6 ... bounded by h^2 max|F'''|/6 with
-// F''' = A (2w^2 - 4 v0^2)/(w^2 + 4 v0^2)^(5/2), |F'''| <= A/(8 v0^3)
-// (at w = 0; elsewhere smaller), plus the rounding of the difference,
-// 2 EPS |F| / (2h)
+// h^2 max|F3|/6, F3 = d^3F/dw^3 = A (2w^2 - 4 v0^2)/(w^2 + 4 v0^2)^(5/2), whose
+// largest magnitude is A/(8 v0^3) at w = 0, plus the rounding of the
+// difference, 2 EPS |F| / (2h)
 TEST(Rate, SlopeIsTheDerivative)
 {
   const double A = 0.9, v0 = 0.05;
