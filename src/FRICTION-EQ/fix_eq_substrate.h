@@ -104,6 +104,9 @@ class FixEQSubstrate : public FixEQBlocks {
   feq::ThermalKeywords tkw;
   feq::BlockHops hopper;
   bigint tseed;
+  // velocity strengthening (rate A v0): -A asinh(v/(2 v0)) along dir
+  // during runs, v the block's velocity atom->v (no per-block state)
+  feq::RateLaw rate;
   // moves of a block by more than half a period in one step (time step too
   // large), counted on each rank and reported once per run (post_run); the
   // first one of this rank
@@ -131,6 +134,7 @@ class FixEQSubstrate : public FixEQBlocks {
   void parse_shape(const std::vector<std::string> &args, size_t &iarg);
   void parse_disorder(const std::vector<std::string> &args, size_t &iarg);
   void setup_thermal();
+  void parse_rate(const std::vector<std::string> &args, size_t &iarg);
   double step_dt() const;
   std::string layout_hint(long stored) const override;
   bigint check(char **arg, double stage0);
