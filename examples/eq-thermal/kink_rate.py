@@ -34,13 +34,32 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[1] / "tools"))
-from eqtools import fkme, run_lammps  # noqa: E402
+from eqtools import fkme, run_eqme, run_lammps  # noqa: E402
 
 INPUT = HERE / "in.eq-thermal-kink-rate"
 G, KC, UC, K, GAMMA, DT = 25.0, 1.0, 1.0, 0.07, 100.0, 0.1
 N, SEED0, SEED1 = 200, 68, 132
 TRACK = (150, 180)        # atom IDs; sites ID - 1
-A_RATE, V0 = 0.01, 1e-4   # A/(2 v0) = 50 < gamma: the lagged rate term is stable
+A_RATE, V0 = 0.01, 1e-4   # A/(2 v0) = 50 < gamma: the lagged rate term is stable (the test's)
+# the worked example: the block's contacts as those of examples/eq-thermal
+# (thresholds uniform [0.75, 1.25], theta = 0.02, eps_a = omega = 1); the
+# kink's blocks slip at up to ~1e-2, so the ME's slope is taken as the
+# secant over [1e-4, 1e-2] and v0 = 1e-4
+EQME = ["threshold", "uniform", "0.75", "1.25", "thermal", "0.02", "1.0", "1.0",
+        "velocity", "1e-3"]
+V_LO, V_HI = 1e-4, 1e-2
+
+
+def rate_from_me(workdir, kc=KC):
+    """A = kc * (F_k(v_hi) - F_k(v_lo)) / (N k_c ln(v_hi/v_lo)) from eq-me's
+    kinetic table (F_k in units of N k_c; the block's kc is N_c k_c, as
+    for the table shape: phi = F/(N k_c), F_s = kc phi), v0 = v_lo."""
+    workdir = Path(workdir)
+    workdir.mkdir(parents=True, exist_ok=True)
+    run_eqme(EQME + ["kinetic", "fk.dat", V_LO, V_HI, 5], cwd=workdir)
+    d = np.loadtxt(workdir / "fk.dat")
+    secant = (d[-1, 1] - d[0, 1]) / math.log(d[-1, 0] / d[0, 0])
+    return kc * secant, V_LO, d
 
 
 def initial_positions(f, n=N, seed=(SEED0, SEED1), kc=KC, uc=UC, K=K):
@@ -152,16 +171,20 @@ def crossing_times(path, track=TRACK, uc=UC):
     out = []
     for k, ident in enumerate(track):
         u = d[:, k + 1] - (ident - 1)
-        j = np.nonzero(u >= uc)[0][0]
+        hit = np.nonzero(u >= uc)[0]
+        if len(hit) == 0:
+            raise RuntimeError(f"block {ident} has not slipped by t = {t[-1]:g}: run longer")
+        j = hit[0]
         out.append(t[j - 1] + (uc - u[j - 1]) / (u[j] - u[j - 1]) * (t[j] - t[j - 1]))
     return np.array(out)
 
 
-def lammps_velocity(f, A, v0, dt, workdir, nprocs=1, **extra):
-    """Kink velocity of one LAMMPS run (A < 0: no rate keyword)."""
+def lammps_velocity(f, A, v0, dt, workdir, nprocs=1, margin=1.3, **extra):
+    """Kink velocity of one LAMMPS run (A < 0: no rate keyword), run for
+    `margin` times the time the A = 0 kink needs to pass the tracked blocks."""
     workdir = Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
-    t_end = 1.3 * (TRACK[1] - SEED1 + 10) / fkme.vk_discrete(f, G, KC, UC, K, 1.0, GAMMA)
+    t_end = margin * (TRACK[1] - SEED1 + 10) / fkme.vk_discrete(f, G, KC, UC, K, 1.0, GAMMA)
     var = dict(N=N, g=G, K=K, f=f, A=A, v0=v0, eta=GAMMA, dt=dt, steps=int(math.ceil(t_end / dt)),
                seed0=SEED0, seed1=SEED1, track1=TRACK[0], track2=TRACK[1], out=".")
     var.update(extra)
@@ -170,10 +193,11 @@ def lammps_velocity(f, A, v0, dt, workdir, nprocs=1, **extra):
     return (TRACK[1] - TRACK[0]) / (tc[1] - tc[0])
 
 
-def lammps_extrapolated(f, A, v0, workdir, dt=DT, levels=2):
+def lammps_extrapolated(f, A, v0, workdir, dt=DT, levels=2, margin=1.3):
     """Richardson: 2 v(dt/2) - v(dt) (and the same one level finer with
     levels = 3, whose difference from the first estimates its error)."""
-    v = [lammps_velocity(f, A, v0, dt / 2 ** k, Path(workdir) / f"dt{k}") for k in range(levels)]
+    v = [lammps_velocity(f, A, v0, dt / 2 ** k, Path(workdir) / f"dt{k}", margin=margin)
+         for k in range(levels)]
     ext = [2 * v[k + 1] - v[k] for k in range(levels - 1)]
     return v, ext
 
@@ -182,32 +206,39 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="three forces")
     ap.add_argument("--out", default=str(HERE / "out"))
+    ap.add_argument("--doc-img", action="store_true", help="also write doc/src/img/eq_thermal_kink_rate.png")
     args = ap.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    forces = (0.7, 0.8, 1.0) if args.quick else (0.65, 0.7, 0.75, 0.8, 0.9, 1.0)
+    forces = (0.8, 1.0) if args.quick else (0.7, 0.8, 0.9, 1.0)
+    A_me, v0, table = rate_from_me(out / "kink-rate")
     print(f"FRICTION-EQ eq-thermal kink rate: overdamped chain N = {N}, g = {G}, kc = uc = {KC}, "
-          f"K = {K}, gamma = {GAMMA}, dt = {DT}; rate A = {A_RATE}, v0 = {V0} "
-          f"(A/(2 v0) = {A_RATE / (2 * V0):g})")
+          f"K = {K}, gamma = {GAMMA}, dt = {DT}")
+    print(f"  eq-me {' '.join(EQME)} kinetic fk.dat {V_LO:g} {V_HI:g} 5:")
+    print("    v: " + "  ".join(f"{r[0]:.3g}" for r in table) + "\n    F_k/(N k_c): "
+          + "  ".join(f"{r[1]:.5f}" for r in table) + "\n    dF_k/dln v: "
+          + "  ".join(f"{r[2]:.5f}" for r in table))
+    print(f"  rate A = kc * secant slope = {A_me:.5f}, v0 = {v0:g} (A/(2 v0) = {A_me / (2 * v0):.4g} "
+          f"< gamma = {GAMMA:g})")
     print("  v_k: LAMMPS (dt, dt/2 -> Richardson) / reference (RK4, implicit law) / rel. diff;"
           " A = 0 also against the exact travelling wave; slowdown 1 - v/v(A=0)")
     rows = []
     t0 = time.time()
     for f in forces:
         row = dict(f=f)
-        for tag, A in (("0", 0.0), ("A", A_RATE)):
-            v, ext = lammps_extrapolated(f, A, V0, out / "kink-rate" / f"f{f}-{tag}")
-            ref, err, wmax, wmin = reference_velocity(f, A, V0)
+        for tag, A in (("0", 0.0), ("A", A_me)):
+            v, ext = lammps_extrapolated(f, A, v0, out / "kink-rate" / f"f{f}-{tag}", margin=1.8)
+            ref, err, wmax, wmin = reference_velocity(f, A, v0, h=0.2)
             row[tag] = dict(v=v, ext=ext[0], ref=ref, ref_err=err, wmax=wmax, wmin=wmin)
         row["exact"] = fkme.vk_discrete(f, G, KC, UC, K, 1.0, GAMMA)
         r0, rA = row["0"], row["A"]
         slow = 1 - rA["ref"] / r0["ref"]
         # the rate force lies between the viscous drags gamma_lo w and
         # gamma_hi w for 0 <= w <= wmax (concave): bounds of the slowdown
-        g_hi = A_RATE / (2 * V0)
-        g_lo = A_RATE * math.asinh(rA["wmax"] / (2 * V0)) / rA["wmax"]
+        g_hi = A_me / (2 * v0)
+        g_lo = A_me * math.asinh(rA["wmax"] / (2 * v0)) / rA["wmax"]
         row["bounds"] = (1 - GAMMA / (GAMMA + g_lo), 1 - GAMMA / (GAMMA + g_hi))
-        row["eta_T"] = A_RATE / rA["wmax"]
+        row["eta_T"] = A_me / rA["wmax"]
         row["slow"] = slow
         rows.append(row)
         print(f"  f = {f:5.3f}  A = 0:  {r0['v'][0]:.6f} {r0['v'][1]:.6f} -> {r0['ext']:.6f} / "
@@ -229,7 +260,7 @@ def main():
     ff = np.linspace(0.63, max(fs) + 0.02, 80)
     ax.plot(ff, [fkme.vk_discrete(x, G, KC, UC, K, 1.0, GAMMA) for x in ff], "k-", lw=0.8,
             label="exact travelling wave, A = 0")
-    for tag, mk, lab in (("0", "o", "A = 0"), ("A", "s", f"A = {A_RATE}, v0 = {V0:g}")):
+    for tag, mk, lab in (("0", "o", "A = 0"), ("A", "s", f"A = {A_me:.4f}, v0 = {v0:g}")):
         ax.plot(fs, [r[tag]["ext"] for r in rows], mk, mfc="none", label=f"LAMMPS, {lab}")
         ax.plot(fs, [r[tag]["ref"] for r in rows], "+", ms=10, color="C3" if tag == "A" else "C2",
                 label=f"reference, {lab}")
@@ -245,6 +276,8 @@ def main():
     bx.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(out / "eq-thermal-kink-rate.png", dpi=110)
+    if args.doc_img:
+        fig.savefig(HERE.parents[1] / "doc" / "src" / "img" / "eq_thermal_kink_rate.png", dpi=80)
     print(f"  plot: {out / 'eq-thermal-kink-rate.png'}")
 
 
