@@ -25,7 +25,9 @@
    u being its unwrapped displacement from its site along the sliding
    direction and phi a periodic shape (sawtooth, smooth, or a table from
    the master equation).  Optional driving springs K tie every block to a
-   stage moving with velocity v.  See doc/src/fix_eq_substrate.rst.
+   stage moving with velocity v; optional velocity strengthening (rate A
+   v0) adds -A asinh(v/(2 v0)), the block law F_k(v) of T > 0.  See
+   doc/src/fix_eq_substrate.rst.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
