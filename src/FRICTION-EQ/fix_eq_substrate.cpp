@@ -355,7 +355,7 @@ void FixEQSubstrate::init()
                         "({} integrator)\n", w == 1.0 ? "[t_n, t_n+1]" : "[t_n+1/2, t_n+3/2]",
                    w == 1.0 ? "first-order overdamped" : "velocity-Verlet");
   window = w;
-  if (rate.active() && w == 1.0 && comm->me == 0)
+  if (rate.active() && w == 1.0 && !ran && comm->me == 0)
     utils::logmesg(lmp, "fix eq/substrate: rate with a first-order integrator: the rate force "
                         "uses the velocity of the previous step (fix brownian stores v = dx/dt); "
                         "stable for A/(2 v0) = {:.6g} < gamma_t\n", rate.linear_gamma());
