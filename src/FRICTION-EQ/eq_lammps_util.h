@@ -31,6 +31,15 @@
 #include <cmath>
 #include <string>
 
+// a branch taken rarely (the slow path of a hot loop): the compiler keeps
+// the loop's sums in registers and spills them around the call of the
+// slow path only
+#if defined(__GNUC__)
+#define FEQ_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#else
+#define FEQ_UNLIKELY(x) (x)
+#endif
+
 namespace LAMMPS_NS {
 class LAMMPS;
 class Atom;
@@ -96,6 +105,9 @@ namespace EQUtil {
       if (wrapfix && std::fabs(s) > 0.5 * wrap) s -= wrap * std::round(s / wrap);
       return s;
     }
+    // stretch(s) returns s unchanged for |s| below this (infinite where
+    // the coordinate has no wrap)
+    double stretch_reach() const { return wrapfix ? 0.5 * wrap : HUGE_VAL; }
     // a displacement x_u - site of atom i that can grow without bound,
     // from prev, its value at the last evaluation (the atom moved by less
     // than IMGMAX box lengths since): where the image count wrapped in

@@ -493,11 +493,12 @@ void FixEQContacts::post_run()
 /* ----------------------------------------------------------------------
    contact forces -k_i s_i and the sums of the output; breaking (without
    interaction: each contact on its own) when allowed.  One pass in index
-   order; a contact that forms or breaks goes out of line (settle()), and
-   the rest of the loop makes no call and reads everything by offset from
-   local copies that no store to the rows can alias, so that its sums and
-   pointers stay in registers (issue 24: 8.0 -> 5.2 ns per contact-step,
-   the same numbers to the last bit)
+   order; one test picks the common step, and a contact that forms,
+   breaks or needs the unwrap's correction goes out of line (settle_scan(),
+   settle_thermal_scan()); the rest of the loop makes no call and reads
+   everything by offset from local copies that no store to the rows can
+   alias, so that its sums and pointers stay in registers (issue 24: 8.0
+   -> 5.2 -> 4.3 ns per contact-step, the same numbers to the last bit)
 ------------------------------------------------------------------------- */
 
 void FixEQContacts::apply(bool allow_breaks)
@@ -526,11 +527,17 @@ void FixEQContacts::apply(bool allow_breaks)
 // returns the number of breaks
 template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks)
 {
+  // the common step in line: a formed contact (x_s > 0) whose stretch is
+  // below its threshold less the tolerance and below the reach of the
+  // unwrap's correction (so that the correction is the identity).  One
+  // test covers them all (x_s <= 0 fails it).  Contacts detached for good
+  // stay in line; every other contact goes out of line (settle_scan()).
   const EQUtil::Unwrap unwrap = unwrap_arg;
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int bit = groupbit;
   const double rel = break_tol;
+  const double reach = unwrap.stretch_reach();
   const std::size_t width = ncol;
   double *const rows = nlocal > 0 ? state[0] : nullptr;    // nmax x ncol in one block
   double *const fd = nlocal > 0 ? atom->f[0] + idir : nullptr;
@@ -540,23 +547,19 @@ template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap
     if (!(mask[i] & bit)) continue;
     double *const st = rows + i * width;
     ncount += 1.0;
-    const double xs = st[CS_THRESHOLD];
-    if (xs < 0.0) {    // detached for good
-      st[CS_STRETCH] = st[CS_FORCE] = 0.0;
-      continue;
-    }
-    double s;
-    if (xs == 0.0) {
-      if (!settle(i, unwrap_arg, allow_breaks, nb)) continue;
+    const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
+    double s = xu - st[CS_ANCHOR];
+    const double tol = ContactModel::tolerance(st[CS_ANCHOR], s, rel);
+    const bool common = std::fabs(s) < std::min(st[CS_THRESHOLD] - tol, reach);
+    if (FEQ_UNLIKELY(!common)) {
+      if (st[CS_THRESHOLD] < 0.0) {    // detached for good
+        st[CS_STRETCH] = st[CS_FORCE] = 0.0;
+        continue;
+      }
+      if (!settle_scan(i, unwrap_arg, allow_breaks, nb)) continue;
       s = st[CS_STRETCH];
     } else {
-      const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
-      s = unwrap.stretch(xu - st[CS_ANCHOR]);
       st[CS_STRETCH] = s;
-      if (allow_breaks && !(std::fabs(s) < xs - ContactModel::tolerance(st, rel))) {
-        if (!settle(i, unwrap_arg, allow_breaks, nb)) continue;
-        s = st[CS_STRETCH];
-      }
     }
     const double fc = st[CS_STIFFNESS] * s;
     st[CS_FORCE] = fc;
@@ -571,6 +574,25 @@ template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap
   return nb;
 }
 
+// scan()'s contacts off the common step: not formed yet, detached for
+// good, at or over their threshold, or with a stretch the unwrap corrects;
+// false when it has no contact (stretch and force 0)
+bool FixEQContacts::settle_scan(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, long &nb)
+{
+  double *const st = state[i];
+  const double xs = st[CS_THRESHOLD];
+  if (xs < 0.0) {    // detached for good
+    st[CS_STRETCH] = st[CS_FORCE] = 0.0;
+    return false;
+  }
+  if (xs == 0.0) return settle(i, unwrap, allow_breaks, nb);
+  const double s = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
+  st[CS_STRETCH] = s;
+  if (allow_breaks && !(std::fabs(s) < xs - ContactModel::tolerance(st, break_tol)))
+    return settle(i, unwrap, allow_breaks, nb);
+  return true;
+}
+
 /* ----------------------------------------------------------------------
    with temperature, aging or delays: each contact advances by the time
    step in lib/eq_contact (ContactModel::advance()); dt = 0 in the set-up
@@ -582,14 +604,15 @@ template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap
 template <bool ORTHOGONAL, bool THERMAL>
 long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks, double dt)
 {
-  // as scan(): the common step (ContactModel::quick_step()) in line,
-  // everything else out of line (settle_thermal())
+  // as scan(): the common step (ContactModel::quick_attached()) in line,
+  // everything else out of line (settle_thermal_scan())
   const EQUtil::Unwrap unwrap = unwrap_arg;
   const ContactModel &engine = *model;
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int bit = groupbit;
   const bool quick = allow_breaks && dt > 0.0;
+  const double reach = unwrap.stretch_reach();
   const std::size_t width = ncol;
   double *const rows = nlocal > 0 ? state[0] : nullptr;    // nmax x ncol in one block
   double *const fd = nlocal > 0 ? atom->f[0] + idir : nullptr;
@@ -599,22 +622,16 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
     if (!(mask[i] & bit)) continue;
     double *const st = rows + i * width;
     ncount += 1.0;
-    bool done = false;
-    if (quick && st[CS_THRESHOLD] > 0.0) {
-      const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
-      const double m = unwrap.stretch(xu - st[CS_ANCHOR]);
-      if (st[CT_WAIT] > 0.0) {    // absent: its anchor follows its atom
-        if (engine.quick_wait(st, m, dt)) {
-          st[CS_ANCHOR] = xu;
-          st[CS_FORCE] = 0.0;
-          continue;
-        }
-      } else {
-        done = engine.quick_attached<THERMAL>(st, m, dt);
-      }
+    const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
+    double s = xu - st[CS_ANCHOR];
+    // the common step: formed, attached, within the unwrap's reach (where
+    // its correction is the identity) and quick_attached()
+    const bool common = quick && st[CS_THRESHOLD] > 0.0 && !(st[CT_WAIT] > 0.0) &&
+        std::fabs(s) < reach && engine.quick_attached<THERMAL>(st, s, dt);
+    if (FEQ_UNLIKELY(!common)) {
+      if (!settle_thermal_scan(i, unwrap_arg, xu, allow_breaks, dt, nb)) continue;
+      s = st[CS_STRETCH];
     }
-    if (!done && !settle_thermal(i, unwrap_arg, allow_breaks, dt, nb)) continue;
-    const double s = st[CS_STRETCH];
     const double fc = st[CS_STIFFNESS] * s;
     st[CS_FORCE] = fc;
     fd[3 * i] -= fc;
@@ -626,6 +643,23 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
   local_breaks_total += nb;
   store_sums(fsum, esum, ssum, natt, ncount);
   return nb;
+}
+
+// scan_thermal()'s contacts off the common step (xu: the atom's unwrapped
+// coordinate): a waiting contact whose delay goes on (its anchor follows
+// its atom), or settle_thermal()
+bool FixEQContacts::settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, double xu,
+                                        bool allow_breaks, double dt, long &nb)
+{
+  double *const st = state[i];
+  if (allow_breaks && dt > 0.0 && st[CS_THRESHOLD] > 0.0 && st[CT_WAIT] > 0.0) {
+    if (model->quick_wait(st, unwrap.stretch(xu - st[CS_ANCHOR]), dt)) {
+      st[CS_ANCHOR] = xu;
+      st[CS_FORCE] = 0.0;
+      return false;
+    }
+  }
+  return settle_thermal(i, unwrap, allow_breaks, dt, nb);
 }
 
 // a contact off the common step: formed, its step taken (or held), its

@@ -152,7 +152,10 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void store_sums(double fsum, double esum, double ssum, double natt, double ncount);
   template <bool ORTHOGONAL, bool THERMAL> long scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt);
   bool settle_thermal(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt, long &nb);
+  bool settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, double xu, bool allow_breaks,
+                           double dt, long &nb);
   bool settle(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, long &nb);
+  bool settle_scan(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, long &nb);
   void apply_forces();
   void tally(double **f);
   void outputs_before_run();

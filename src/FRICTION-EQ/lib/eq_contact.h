@@ -162,7 +162,12 @@ class ContactModel {
   // driving (relative; 0 for a plain test) scaled by the magnitudes involved
   static double tolerance(const double *st, double rel)
   {
-    return rel > 0.0 ? rel * (1.0 + std::abs(st[CS_ANCHOR]) + std::abs(st[CS_STRETCH])) : 0.0;
+    return tolerance(st[CS_ANCHOR], st[CS_STRETCH], rel);
+  }
+  // the same for a row with this anchor and stretch
+  static double tolerance(double anchor, double s, double rel)
+  {
+    return rel > 0.0 ? rel * (1.0 + std::abs(anchor) + std::abs(s)) : 0.0;
   }
 
   // with temperature, aging or delays (row of CT_NCOL): one time step dt
