@@ -593,7 +593,9 @@ void FixEQSubstrate::apply(double **f)
     }
     const double fd = drive_flag ? K * (Xs - u) : 0.0;
     if (f) f[i][d] += fs + fd;
-    if (rating) f[i][d] -= rate.force(vel[i][d]);
+    // the rate term scales with the block's contacts, as its shape does
+    // (kd / kc = 1 for a block of the default k_c without disorder)
+    if (rating) f[i][d] -= rate.force(vel[i][d]) * (kd / kc);
     st[DISP] = u;
     st[FSUB] = fs;
     st[FDRIVE] = fd;

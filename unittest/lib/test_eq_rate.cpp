@@ -130,13 +130,30 @@ TEST(Rate, SlopeIsTheDerivative)
 // no overflow at extreme velocities: w^2 is not formed
 TEST(Rate, ExtremeVelocitiesStayFinite)
 {
-  const RateLaw r(RateLaw::A_MAX, 1.0);
-  for (double w : {DBL_MAX, -DBL_MAX, 1e300, DBL_MIN, -DBL_MIN}) {
-    EXPECT_TRUE(std::isfinite(r.force(w))) << w;
-    EXPECT_TRUE(std::isfinite(r.slope(w))) << w;
-    EXPECT_LE(std::fabs(r.force(w)), 1e300) << w;
+  // |F_rate| <= A (ln 2 + ln DBL_MAX - ln(2 v0)) <= 1455 A for any v0 > 0
+  for (double v0 : {1.0, 1e-10, 1e-300, 4.9e-324}) {
+    const RateLaw r(RateLaw::A_MAX, v0);
+    for (double w : {DBL_MAX, -DBL_MAX, 1e300, DBL_MIN, -DBL_MIN}) {
+      EXPECT_TRUE(std::isfinite(r.force(w))) << w << " v0 " << v0;
+      // the slope is at most A / (2 v0): finite where that is
+      if (std::isfinite(r.linear_gamma())) EXPECT_TRUE(std::isfinite(r.slope(w))) << w << " v0 " << v0;
+      EXPECT_LE(std::fabs(r.force(w)), 1455.0 * RateLaw::A_MAX) << w << " v0 " << v0;
+    }
+    EXPECT_GT(r.slope(DBL_MAX), 0.0);
   }
-  EXPECT_GT(r.slope(DBL_MAX), 0.0);
+}
+
+TEST(Rate, LogarithmContinuesWhereTheArgumentOverflows)
+{
+  // v0 = 1e-10: w / (2 v0) overflows above w_o = 2e-10 DBL_MAX; on both
+  // sides F = ln 2x + 1/(4x^2) with 1/(4x^2) ~ 1e-617, so the two values
+  // differ by ln(1.001/0.999) to the rounding of asinh and log at ~700
+  // (a few ulps of 700: 1e-12 is a generous bound)
+  const RateLaw r(1.0, 1e-10);
+  const double wo = 2e-10 * DBL_MAX;
+  const double below = r.force(0.999 * wo), above = r.force(1.001 * wo);
+  EXPECT_NEAR(above - below, std::log(1.001 / 0.999), 1e-12);
+  EXPECT_EQ(r.force(-1.001 * wo), -above);
 }
 
 TEST(Rate, BadValuesNameTheirParameter)

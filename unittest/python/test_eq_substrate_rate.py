@@ -78,7 +78,7 @@ def test_zero_amplitude_is_the_keyword_off_run(tmp_path):
 
 
 # ------------------------------------------------- 2. the linear limit
-@pytest.mark.parametrize("integ", ["brownian", "nve"])
+@pytest.mark.parametrize("integ", ["brownian", "nve", "brownian-kc"])
 def test_linear_limit_is_fix_viscous(tmp_path, integ):
     """v0 = 1e5 (brownian; 1e7 nve) far above every block velocity w: the
     rate force A asinh(w/(2 v0)) = gamma_r w (1 - x^2/6 + ...), x = w/(2
@@ -90,16 +90,21 @@ def test_linear_limit_is_fix_viscous(tmp_path, integ):
     positions of every step: (n_steps + 1) * 8 EPS * max|x| (a few ulp per
     step, accumulated linearly; the damped chain does not amplify them)
     plus the linearisation, (w_max/(2 v0))^2/6 times the largest
-    displacement."""
-    if integ == "brownian":
+    displacement.  brownian-kc: every block's k_c set to 0.4 of the
+    fix's kc (fix_modify kc): the rate term scales with the block's
+    contacts as its shape does, so the equivalent drag is 0.4 gamma_r."""
+    scale = 1.0
+    if integ.startswith("brownian"):
         var = dict(integ="brownian", steps=int(math.ceil(T_END / kr.DT)))
         A, v0, g_r = 4e6, 1e5, 20.0
+        if integ == "brownian-kc":
+            var["kcall"] = scale = 0.4
     else:
         var = dict(integ="nve", eta=1.0, dt=0.02, steps=3000)
         A, v0, g_r = 1e7, 1e7, 0.5
     assert A / (2 * v0) == g_r
     run(tmp_path / "rate", A=A, v0=v0, dumpevery=var["steps"], **var)
-    run(tmp_path / "visc", A=-1, visc=g_r, dumpevery=var["steps"], **var)
+    run(tmp_path / "visc", A=-1, visc=scale * g_r, dumpevery=var["steps"], **var)
     tr = np.loadtxt(tmp_path / "rate" / "track.dat")
     tv = np.loadtxt(tmp_path / "visc" / "track.dat")
     r, v = last(tmp_path / "rate" / "kink.dump"), last(tmp_path / "visc" / "kink.dump")

@@ -204,10 +204,15 @@ RateLaw::RateLaw(double A, double v0) : A_(A), v0_(v0)
 }
 
 // asinh(x) of the C library: odd, accurate to an ulp or two for all x
-// (no cancellation at small x, no overflow of x^2 at large x)
+// (no cancellation at small x, no overflow of x^2 at large x); where
+// w / (2 v0) overflows (v0 < 1/2), asinh x = ln 2 + ln |x| + O(1/x^2)
+// from the logarithms of its factors
 double RateLaw::force(double w) const
 {
-  return A_ * std::asinh(w / (2.0 * v0_));
+  const double x = w / (2.0 * v0_);
+  if (std::isfinite(x) || !std::isfinite(w)) return A_ * std::asinh(x);
+  const double lnx = std::log(std::fabs(w)) - std::log(2.0 * v0_);
+  return std::copysign(A_ * (std::log(2.0) + lnx), w);
 }
 
 // A / sqrt(w^2 + 4 v0^2) with hypot: no overflow of w^2

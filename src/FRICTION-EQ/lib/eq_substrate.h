@@ -108,8 +108,9 @@ std::string substrate_table_text(const std::string &keyword, const std::vector<d
 
 class RateLaw {
  public:
-  // the largest |F_rate| is A asinh(DBL_MAX / (2 v0)) <= A * 710.5: A is
-  // limited to 1e300 / 711 so that forces stay finite
+  // the largest |F_rate| at a finite velocity is A (ln 2 + ln DBL_MAX -
+  // ln(2 v0)) <= A * 1455 (v0 >= the smallest double): A is limited to
+  // 1e300 / 711 so that forces stay finite
   static constexpr double A_MAX = 1e300 / 711.0;
   RateLaw() = default;
   // A >= 0 (force), v0 > 0 (velocity), both finite; throws SpecError
