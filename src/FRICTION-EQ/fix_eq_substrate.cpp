@@ -56,7 +56,7 @@ using namespace FixConst;
 
 namespace {
 const char *KEYWORDS =
-    "dir, drive, stage, reverse, crossing, integrator, disorder, thermal, barrier, seed";
+    "dir, drive, stage, reverse, crossing, integrator, disorder, thermal, barrier, seed, rate";
 const char *SHAPES = "sawtooth, smooth, table";
 // global vector: f = K X_s, X_s, v_stage, <v>, <u>, sum F_s, sum drive, E_sub, E_drive, N,
 // thermal hops
@@ -103,6 +103,10 @@ FixEQSubstrate::FixEQSubstrate(LAMMPS *lmp, int narg, char **arg) :
                                             kdrive, stage0, vstage)
                               : std::string("no driving springs"),
                    disorder.dist ? "; disorder " + disorder.text : std::string());
+  if (rate.active() && comm->me == 0)
+    utils::logmesg(lmp, "fix eq/substrate: velocity strengthening F_rate = A asinh(v/(2 v0)), "
+                        "A = {}, v0 = {} (viscous damping A/(2 v0) = {:.6g} for |v| << v0)\n",
+                   rate.amplitude(), rate.v0(), rate.linear_gamma());
   if (thermal_flag && comm->me == 0)
     utils::logmesg(lmp, "fix eq/substrate: thermal hops: {}; seed {}; theta = k_B T / eps_a = {:.6g}, "
                         "hop rate at zero stretch {:.6g}\n",
@@ -158,6 +162,7 @@ double FixEQSubstrate::parse(int narg, char **arg)
       else if (kw == "reverse")
         rev_break = feq::parse_choice(args, iarg, kw, {"periodic", "break"});
       else if (kw == "disorder") parse_disorder(args, iarg);
+      else if (kw == "rate") parse_rate(args, iarg);
       else if (kw == "aging" || kw == "delay" || kw == "rest")
         throw feq::SpecError("keyword '" + kw + "' is one of fix eq/contacts (the age and the "
                              "re-formation delay of a contact): a block of this fix re-enters "
@@ -222,6 +227,18 @@ void FixEQSubstrate::parse_disorder(const std::vector<std::string> &args, size_t
   if (!utils::is_integer(tok) ||
       (dseed = EQUtil::bnumeric(lmp, "Fix eq/substrate disorder: seed", tok)) <= 0)
     throw feq::SpecError("disorder: seed must be a positive integer (got '" + tok + "')");
+}
+
+// rate A v0: the velocity strengthening of a moving block (lib/eq_substrate
+// RateLaw checks the values and names "rate A" or "rate v0")
+void FixEQSubstrate::parse_rate(const std::vector<std::string> &args, size_t &iarg)
+{
+  if (iarg + 2 > args.size())
+    throw feq::SpecError("rate: expected 2 values (A v0), got " + std::to_string(args.size() - iarg));
+  const feq::NumberParser number = EQUtil::number_parser(lmp);
+  const double A = feq::parse_finite(args, iarg, "rate A", number);
+  const double v0 = feq::parse_finite(args, iarg, "rate v0", number);
+  rate = feq::RateLaw(A, v0);
 }
 
 // thermal, barrier and seed together: the hop law of fix eq/contacts for a
@@ -338,6 +355,10 @@ void FixEQSubstrate::init()
                         "({} integrator)\n", w == 1.0 ? "[t_n, t_n+1]" : "[t_n+1/2, t_n+3/2]",
                    w == 1.0 ? "first-order overdamped" : "velocity-Verlet");
   window = w;
+  if (rate.active() && w == 1.0 && !ran && comm->me == 0)
+    utils::logmesg(lmp, "fix eq/substrate: rate with a first-order integrator: the rate force "
+                        "uses the velocity of the previous step (fix brownian stores v = dx/dt); "
+                        "stable for A/(2 v0) = {:.6g} < gamma_t\n", rate.linear_gamma());
 }
 
 /* ----------------------------------------------------------------------
@@ -482,6 +503,10 @@ void FixEQSubstrate::apply(double **f)
   const double hop_dt = dynamics && chained ? step_dt() : 0.0;
   feq::WellChange changes[feq::BlockHops::MAX_CHANGES];
   int nchange = 0;
+  // rate: the drag of the block's velocity, in runs (setup included, as
+  // fix viscous), never in a minimization (no time passes)
+  const bool rating = f && rate.active() && update->whichflag == 1;
+  const double *const *const vel = atom->v;
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -568,6 +593,9 @@ void FixEQSubstrate::apply(double **f)
     }
     const double fd = drive_flag ? K * (Xs - u) : 0.0;
     if (f) f[i][d] += fs + fd;
+    // the rate term scales with the block's contacts, as its shape does
+    // (kd / kc = 1 for a block of the default k_c without disorder)
+    if (rating) f[i][d] -= rate.force(vel[i][d]) * (kd / kc);
     st[DISP] = u;
     st[FSUB] = fs;
     st[FDRIVE] = fd;

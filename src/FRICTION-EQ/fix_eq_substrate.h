@@ -25,7 +25,9 @@
    u being its unwrapped displacement from its site along the sliding
    direction and phi a periodic shape (sawtooth, smooth, or a table from
    the master equation).  Optional driving springs K tie every block to a
-   stage moving with velocity v.  See doc/src/fix_eq_substrate.rst.
+   stage moving with velocity v; optional velocity strengthening (rate A
+   v0) adds -A asinh(v/(2 v0)), the block law F_k(v) of T > 0.  See
+   doc/src/fix_eq_substrate.rst.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -104,6 +106,9 @@ class FixEQSubstrate : public FixEQBlocks {
   feq::ThermalKeywords tkw;
   feq::BlockHops hopper;
   bigint tseed;
+  // velocity strengthening (rate A v0): -A asinh(v/(2 v0)) along dir
+  // during runs, v the block's velocity atom->v (no per-block state)
+  feq::RateLaw rate;
   // moves of a block by more than half a period in one step (time step too
   // large), counted on each rank and reported once per run (post_run); the
   // first one of this rank
@@ -131,6 +136,7 @@ class FixEQSubstrate : public FixEQBlocks {
   void parse_shape(const std::vector<std::string> &args, size_t &iarg);
   void parse_disorder(const std::vector<std::string> &args, size_t &iarg);
   void setup_thermal();
+  void parse_rate(const std::vector<std::string> &args, size_t &iarg);
   double step_dt() const;
   std::string layout_hint(long stored) const override;
   bigint check(char **arg, double stage0);

@@ -704,6 +704,11 @@ def gen_substrate(b):
             ("thermal", [P("T", "0.05", valid=("zero",)), P("eps_a", "1.0"), P("omega", "1.0")]),
             ("barrier", [P("p", "2.0", valid=("zero",)), P("q", "0.25", valid=("zero",))]),
             ("seed", [P("S", "7", "int")])]),
+        # velocity strengthening: A >= 0 (0 is the keyword off), v0 > 0
+        # (A/(2 v0) = 5 < gamma_t 100 of the base: the lagged term is stable)
+        ("sawtooth", [P("uc", "1.0")], [
+            ("drive", ["0.07", "1e-4"]),
+            ("rate", [P("A", "0.01", valid=("zero",)), P("v0", "1e-3")])]),
     ]
     kc_cmd = Cmd("modkc", r"fix_modify", ["fix_modify", "sub"], [],
                  [("kc", [P("group", "center", "group", nomissing=True), P("value", "0.5", valid=("zero",))])])

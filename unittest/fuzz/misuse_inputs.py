@@ -704,6 +704,16 @@ def gen_restart_args(b):
     for aid, args, same in free:
         b.add(cls, f"substrate.{aid}", restart_case(sbase, fs + args, refs if same else [], thermo=th), ok())
     b.add(cls, "substrate.unchanged", restart_case(sbase, fs + S_ARGS, refs, thermo=th), ok())
+    # rate (velocity strengthening) stores nothing: added, dropped or
+    # changed at a restart the run goes on; unchanged it continues the run
+    # (fix brownian: the velocities it reads are in the file)
+    S_RATE = S_ARGS + " rate 0.01 1e-3"
+    rbase = substrate_system("elastic", S_RATE)
+    b.add(cls, "substrate.rate-added", restart_case(sbase, fs + S_RATE, [], thermo=th), ok())
+    b.add(cls, "substrate.rate-dropped", restart_case(rbase, fs + S_ARGS, [], thermo=th), ok())
+    b.add(cls, "substrate.rate-values", restart_case(rbase, fs + S_ARGS + " rate 0.02 2e-3", [],
+                                                     thermo=th), ok())
+    b.add(cls, "substrate.rate-unchanged", restart_case(rbase, fs + S_RATE, refs, thermo=th), ok())
     b.add(cls, "substrate.unchanged-disorder", restart_case(dbase, fs + S_ARGS + S_DISORDER, refs, thermo=th),
           ok())
     b.add(cls, "substrate-hybrid.unchanged",

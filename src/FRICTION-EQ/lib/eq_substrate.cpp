@@ -192,6 +192,35 @@ std::string substrate_table_text(const std::string &keyword, const std::vector<d
   return out.str();
 }
 
+RateLaw::RateLaw(double A, double v0) : A_(A), v0_(v0)
+{
+  if (!(A >= 0.0) || !std::isfinite(A))
+    throw SpecError("rate A: must be finite and >= 0 (got " + num(A) + ")");
+  if (!(A <= A_MAX))
+    throw SpecError("rate A: " + num(A) + " would make the rate force A asinh(w/(2 v0)) overflow; "
+                    "allowed: A <= " + num(A_MAX));
+  if (!(v0 > 0.0) || !std::isfinite(v0))
+    throw SpecError("rate v0: must be finite and > 0 (got " + num(v0) + ")");
+}
+
+// asinh(x) of the C library: odd, accurate to an ulp or two for all x
+// (no cancellation at small x, no overflow of x^2 at large x); where
+// w / (2 v0) overflows (v0 < 1/2), asinh x = ln 2 + ln |x| + O(1/x^2)
+// from the logarithms of its factors
+double RateLaw::force(double w) const
+{
+  const double x = w / (2.0 * v0_);
+  if (std::isfinite(x) || !std::isfinite(w)) return A_ * std::asinh(x);
+  const double lnx = std::log(std::fabs(w)) - std::log(2.0 * v0_);
+  return std::copysign(A_ * (std::log(2.0) + lnx), w);
+}
+
+// A / sqrt(w^2 + 4 v0^2) with hypot: no overflow of w^2
+double RateLaw::slope(double w) const
+{
+  return A_ / std::hypot(w, 2.0 * v0_);
+}
+
 BlockHops::BlockHops(const ThermalSpec &spec, double uc_, uint64_t seed_) :
     model(spec), uc(uc_), seed(seed_)
 {

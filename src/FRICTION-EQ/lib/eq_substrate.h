@@ -94,6 +94,46 @@ std::string substrate_table_text(const std::string &keyword, const std::vector<d
                                  const std::vector<double> &phi, const std::string &comment);
 
 /* ----------------------------------------------------------------------
+   Velocity strengthening of a sliding block (fix eq/substrate ... rate A
+   v0): at T > 0 the block law of the master equation becomes F_k(v, T),
+   whose rise with the velocity is an extra, velocity-dependent friction
+   of a moving block.  Its regularised logarithm (rate-and-state friction)
+
+     F_rate(w) = A asinh(w / (2 v0)),   w = the block's velocity,
+
+   is odd in w, A ln(w/v0) + A v0^2/w^2 + O(v0^4/w^4) for w >> v0 (slope
+   dF/dln w -> A) and A w/(2 v0) (1 - w^2/(24 v0^2) + ...) for |w| << v0:
+   viscous damping gamma = A/(2 v0).  The force on the block is -F_rate.
+------------------------------------------------------------------------- */
+
+class RateLaw {
+ public:
+  // the largest |F_rate| at a finite velocity is A (ln 2 + ln DBL_MAX -
+  // ln(2 v0)) <= A * 1455 (v0 >= the smallest double): A is limited to
+  // 1e300 / 711 so that forces stay finite
+  static constexpr double A_MAX = 1e300 / 711.0;
+  RateLaw() = default;
+  // A >= 0 (force), v0 > 0 (velocity), both finite; throws SpecError
+  // naming "rate A" or "rate v0"
+  RateLaw(double A, double v0);
+  // A > 0: the term is applied (A = 0 leaves the forces untouched)
+  bool active() const { return A_ > 0.0; }
+  double amplitude() const { return A_; }
+  double v0() const { return v0_; }
+  // F_rate(w), the magnitude of the force opposing the velocity w
+  double force(double w) const;
+  // dF_rate/dw = A / sqrt(w^2 + 4 v0^2) (> 0, largest at w = 0)
+  double slope(double w) const;
+  // dF_rate/dln|w| = w dF_rate/dw (-> A for |w| >> v0)
+  double log_slope(double w) const { return w * slope(w); }
+  // the viscous damping of the linear regime, A / (2 v0)
+  double linear_gamma() const { return A_ / (2.0 * v0_); }
+
+ private:
+  double A_ = 0.0, v0_ = 1.0;
+};
+
+/* ----------------------------------------------------------------------
    Thermally activated hops of a block between the wells of a sawtooth
    substrate whose contacts break at both ends of the well (fix
    eq/substrate ... reverse break thermal ...).  A block in the well with
