@@ -574,17 +574,14 @@ template <bool ORTHOGONAL> long FixEQContacts::scan(const EQUtil::Unwrap &unwrap
   return nb;
 }
 
-// scan()'s contacts off the common step: not formed yet, detached for
-// good, at or over their threshold, or with a stretch the unwrap corrects;
-// false when it has no contact (stretch and force 0)
+// scan()'s contacts off the common step other than those detached for
+// good (scan() keeps them): not formed yet, at or over their threshold,
+// or with a stretch the unwrap corrects; false when it has no contact
+// (stretch and force 0)
 bool FixEQContacts::settle_scan(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, long &nb)
 {
   double *const st = state[i];
   const double xs = st[CS_THRESHOLD];
-  if (xs < 0.0) {    // detached for good
-    st[CS_STRETCH] = st[CS_FORCE] = 0.0;
-    return false;
-  }
   if (xs == 0.0) return settle(i, unwrap, allow_breaks, nb);
   const double s = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
   st[CS_STRETCH] = s;
