@@ -398,7 +398,7 @@ void FixEQContacts::mark_departed()
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; i++)
-    if (!(mask[i] & groupbit)) ContactModel::depart(state[i]);
+    if (!(mask[i] & groupbit)) model->depart(state[i]);
 }
 
 void FixEQContacts::setup_pre_force(int /*vflag*/)
@@ -622,8 +622,9 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
     const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
     double s = xu - st[CS_ANCHOR];
     // the common step: formed, attached, within the unwrap's reach (where
-    // its correction is the identity) and quick_attached()
-    const bool common = quick && st[CS_THRESHOLD] > 0.0 && !(st[CT_WAIT] > 0.0) &&
+    // its correction is the identity) and quick_attached() (at T > 0 that
+    // fails for a contact not formed, detached or waiting: no bound)
+    const bool common = quick && (THERMAL || (st[CS_THRESHOLD] > 0.0 && !(st[CT_WAIT] > 0.0))) &&
         std::fabs(s) < reach && engine.quick_attached<THERMAL>(st, s, dt);
     if (FEQ_UNLIKELY(!common)) {
       if (!settle_thermal_scan(i, unwrap_arg, xu, allow_breaks, dt, nb)) continue;

@@ -176,7 +176,7 @@ TEST(ContactModel, ReentryDrawsNewNumbers)
   const ContactModel m = model(true, true, spec(make_delta(0.0), "delta 0"));
   auto row = fresh_row(m, 17, 0.0);
   const double first = row[CS_THRESHOLD];
-  ContactModel::depart(row.data());
+  m.depart(row.data());
   EXPECT_EQ(row[CS_THRESHOLD], 0.0);
   EXPECT_LT(row[CS_STIFFNESS], 0.0);
   m.form(row.data(), 17, 1.0);
@@ -920,4 +920,82 @@ TEST(Thinning, NewRunWithOtherParametersRemakesTheBound)
   hot.new_run(r.data());
   EXPECT_EQ(r[CT_BOUND_RATE], hot.thermal_model().rate_bound(r[CT_BOUND_S], r[CT_XS_LOW]));
   EXPECT_GE(r[CT_BOUND_RATE], hot.thermal_model().rate(r[CS_STRETCH], r[CS_THRESHOLD]));
+}
+
+// the bound's rise in log rate with the logs skipped where the ladder's
+// cap decides equals the formula with them, to the bit, over decades of
+// K and psi and at the edges (0, subnormal, infinite, NaN)
+TEST(ContactModel, BoundRiseShortcutIsExact)
+{
+  auto formula = [](double k, double psi, double d) {
+    const double lk = std::log(k) - psi;
+    double r = ContactModel::BOUND_LOG_STEP;
+    if (lk > 1.0) r = std::max(r, lk - std::log(lk));
+    return std::min(r, d - d / ContactModel::BOUND_LADDER);
+  };
+  auto same = [](double a, double b) {
+    return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0;
+  };
+  std::vector<double> ks = {0.0, -1.0, 4.9e-324, 1e-310, HUGE_VAL, NAN, 1.0, 2.0};
+  for (int e = -300; e <= 300; e += 7)
+    for (double m : {1.0, 1.2345, 1.5, 1.9999999})
+      ks.push_back(m * std::ldexp(1.0, e));
+  std::vector<double> psis = {-HUGE_VAL, NAN};
+  for (double p = -800.0; p <= 3.0; p += 0.37) psis.push_back(p);
+  const double ln_omega = 2.5;
+  long shortcut_cases = 0, n = 0;
+  for (double k : ks)
+    for (double psi : psis) {
+      const double d = ln_omega - psi;
+      if (!(d > 0.5 * ContactModel::BOUND_LOG_STEP) && !std::isnan(d)) continue;
+      const double want = formula(k, psi, d), got = ContactModel::bound_rise(k, psi, d);
+      ++n;
+      if (same(got, d - d / ContactModel::BOUND_LADDER)) ++shortcut_cases;
+      ASSERT_TRUE(same(got, want)) << "K = " << k << ", psi = " << psi << ": " << got << " vs "
+                                   << want;
+    }
+  // the cap decides in most of this sweep (the case the shortcut serves)
+  EXPECT_GT(shortcut_cases, n / 2);
+}
+
+// at T > 0 the common step (quick_attached<true>()) takes no contact that
+// is not attached, without testing the threshold or the delay: a contact
+// not formed, departed from the group, detached for good or waiting has
+// no bound, and a new run clears a bound such a row still carries
+TEST(Thinning, NoBoundForAContactNotAttached)
+{
+  ThermalSpec t = theta_spec(0.05);
+  t.delay = DelayKind::FIXED;
+  t.tau = 0.5;
+  const ContactModel waits = thermal_model(t, true);
+  const ContactModel once(1.0, 4711, spec(make_delta(1.0), "delta 1"), none(), DistributionSpec{},
+                          true, true, false, theta_spec(0.05));
+  const double dt = 0.01;
+  auto quick = [&](const ContactModel &m, std::vector<double> r, double s) {
+    return m.quick_attached<true>(r.data(), s, dt);
+  };
+  std::vector<double> fresh(waits.columns(), 0.0);
+  EXPECT_FALSE(quick(waits, fresh, 0.0));    // not formed (a zeroed row)
+  for (const ContactModel *m : {&waits, &once}) {
+    std::vector<double> r(m->columns(), 0.0);
+    m->form(r.data(), 9, 0.0);
+    long nb = 0;
+    double x = 0.0;
+    for (int k = 0; k < 40; ++k) m->step(r.data(), 9, (x += 0.01) - r[CS_ANCHOR], dt, nb);
+    ASSERT_GE(r[CT_BOUND_S], 0.0);
+    ASSERT_TRUE(quick(*m, r, r[CS_STRETCH]));    // attached, within its bound
+    std::vector<double> gone = r;
+    m->depart(gone.data());
+    EXPECT_FALSE(quick(*m, gone, 0.0));
+    while (nb == 0) m->step(r.data(), 9, (x += 0.05) - r[CS_ANCHOR], dt, nb);
+    if (m == &waits) ASSERT_GT(r[CT_WAIT], 0.0);
+    else ASSERT_LT(r[CS_THRESHOLD], 0.0);
+    for (double s : {0.0, 1e-3, -1e-3}) EXPECT_FALSE(quick(*m, r, s));
+    // a row whose bound survived (written otherwise): a new run drops it
+    r[CT_BOUND_S] = 0.5;
+    r[CT_XS_LOW] = 1.0;
+    m->new_run(r.data());
+    EXPECT_LT(r[CT_BOUND_S], 0.0);
+    EXPECT_FALSE(quick(*m, r, 0.0));
+  }
 }

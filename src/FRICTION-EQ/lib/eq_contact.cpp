@@ -26,11 +26,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace feq {
 
 namespace {
 std::string num(double v) { return format_number(v, 10); }
+
+constexpr double LN2 = 0.69314718055994530942;
+
+// e with 2^e <= y < 2^(e+1), y positive and normal
+int binary_exponent(double y)
+{
+  uint64_t bits;
+  std::memcpy(&bits, &y, sizeof bits);
+  return static_cast<int>((bits >> 52) & 0x7ff) - 1023;
+}
 }    // namespace
 
 ContactModel::ContactModel(double kc, uint64_t seed_, const DistributionSpec &threshold_,
@@ -116,6 +127,8 @@ void ContactModel::start_life(double *st, uint64_t tag, uint64_t event, uint32_t
 
 void ContactModel::new_run(double *st) const
 {
+  // no bound for a contact not attached (quick_attached()), whatever wrote the row
+  if (!(st[CS_THRESHOLD] > 0.0) || st[CT_WAIT] > 0.0) st[CT_BOUND_S] = NO_BOUND;
   if (!(st[CS_THRESHOLD] > 0.0)) return;
   // the threshold now, with this run's aging (the same as the writing
   // run's, or the lower bound would be kept to the bit)
@@ -133,12 +146,13 @@ void ContactModel::new_run(double *st) const
   }
 }
 
-void ContactModel::depart(double *st)
+void ContactModel::depart(double *st) const
 {
   if (st[CS_THRESHOLD] > 0.0) {
     st[CS_THRESHOLD] = 0.0;
     st[CS_STIFFNESS] = -1.0;    // marks a re-entry for form()
     st[CS_STRETCH] = st[CS_FORCE] = st[CS_FIELD] = 0.0;
+    if (thermal_on) st[CT_BOUND_S] = NO_BOUND;    // not attached: no bound (quick_attached())
   }
 }
 
@@ -299,8 +313,9 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
     res.renewed = true;
     const uint64_t event = static_cast<uint64_t>(st[CS_NBREAK]) + 1;
     const double r = renew(st, tag, event);
-    if (std::isnan(r)) {
+    if (std::isnan(r)) {    // detached for good: no bound (quick_attached())
       st[CT_AGE] = st[CT_WAIT] = st[CT_PENDING] = 0.0;
+      st[CT_BOUND_S] = NO_BOUND;
       return res;
     }
     start_life(st, tag, event, 0u);
@@ -354,12 +369,32 @@ double ContactModel::level(double x, double w, double xs) const
   const double psi = thermal.log_barrier_rate_at(x, xs);
   const double d = thermal.log_omega() - psi;
   if (!(d > 0.5 * BOUND_LOG_STEP)) return HUGE_VAL;
-  // r e^r = K, K = BOUND_CANDIDATES w (d psi/d|x|) / nu(x): r ~ ln K - ln ln K
-  const double lk = std::log(BOUND_CANDIDATES * w * thermal.log_barrier_rate_slope(x, xs)) - psi;
+  const double r = bound_rise(BOUND_CANDIDATES * w * thermal.log_barrier_rate_slope(x, xs), psi, d);
+  return d - r < 0.5 * BOUND_LOG_STEP ? HUGE_VAL : psi + r;
+}
+
+// r e^r = K e^-psi (K = BOUND_CANDIDATES w (d psi/d|x|)): r ~ lk - ln lk,
+// lk = ln K - psi, at least BOUND_LOG_STEP and at most the ladder's
+// (1 - 1/BOUND_LADDER) d.  The cap decides most bounds (a life's first
+// bound, the last below the top); where the exponents of K and of a lower
+// bound of lk show lk - ln lk above it (with a margin far beyond the
+// rounding of the logs), the logs are skipped: the same r to the bit.
+double ContactModel::bound_rise(double k, double psi, double d)
+{
+  const double cap = d - d / BOUND_LADDER;
+  if (cap <= BOUND_LOG_STEP) return cap;    // min(max(step, ...), cap)
+  if (std::isnormal(k) && k > 0.0 && k < HUGE_VAL) {
+    // ln K >= e ln 2 for K in [2^e, 2^(e+1)); f(y) = y - ln y grows for
+    // y > 1, and ln y < (e' + 1) ln 2 for y in [2^e', 2^(e'+1))
+    const double y = binary_exponent(k) * LN2 - psi;
+    if (std::isnormal(y) && y > 2.0 &&
+        y - (binary_exponent(y) + 1) * LN2 >= cap + 1e-9 * (1.0 + std::fabs(cap)))
+      return cap;
+  }
+  const double lk = std::log(k) - psi;
   double r = BOUND_LOG_STEP;
   if (lk > 1.0) r = std::max(r, lk - std::log(lk));
-  r = std::min(r, d - d / BOUND_LADDER);
-  return d - r < 0.5 * BOUND_LOG_STEP ? HUGE_VAL : psi + r;
+  return std::min(r, cap);
 }
 
 void ContactModel::rebound(double *st, double need, double xs, double L) const

@@ -147,7 +147,7 @@ class ContactModel {
   // CS_STIFFNESS < 0: the re-entry streams at its current break count)
   void form(double *st, uint64_t tag, double xu) const;
   // an atom left the group: no contact until it comes back
-  static void depart(double *st);
+  void depart(double *st) const;
 
   // one break of a contact whose effective stretch e reached its
   // threshold; h, K: its field and coupling (0, 0 without interaction).
@@ -207,7 +207,10 @@ class ContactModel {
   // quick_step() for a contact known to be attached (CT_WAIT <= 0), dt > 0,
   // THERMAL: the model's temperature is > 0.  An attached contact's
   // stretch is within its bound (|s| <= CT_BOUND_S) or it has none: the
-  // whole step is, when its end is
+  // whole step is, when its end is.  THERMAL: true for no contact that is
+  // not attached (no bound: CT_BOUND_S < 0 while a contact is not formed,
+  // detached for good or waiting, see NO_BOUND), so that the caller may
+  // skip those tests
   template <bool THERMAL> bool quick_attached(double *st, double m, double dt) const
   {
     const double a = std::fabs(m);
@@ -258,6 +261,9 @@ class ContactModel {
   static constexpr double BOUND_CANDIDATES = 0.5;
   static constexpr double BOUND_LADDER = 16.0;
   static constexpr double BOUND_LOG_STEP = 1.0;
+  // the rise r of a bound's log rate above psi (level()): K = BOUND_CANDIDATES
+  // w (d psi/d|x|), d = ln omega - psi > BOUND_LOG_STEP/2
+  static double bound_rise(double k, double psi, double d);
   // a contact formed again at a re-entry counts its candidates from here
   // (its draws differ from those of the life before it left)
   static constexpr double CANDIDATE_REENTRY = 1099511627776.0;    // 2^40

@@ -81,7 +81,8 @@ class ThermalModel {
  public:
   explicit ThermalModel(const ThermalSpec &s) :
       spec(s), inv_theta(s.theta > 0.0 ? 1.0 / s.theta : 0.0),
-      inv_xc(s.xc > 0.0 ? 1.0 / s.xc : 1.0), ln_omega(std::log(s.omega))
+      inv_xc(s.xc > 0.0 ? 1.0 / s.xc : 1.0), ln_omega(std::log(s.omega)),
+      top_rate(std::exp(ln_omega) * (1.0 + 1e-8))
   {
   }
   const ThermalSpec &params() const { return spec; }
@@ -179,6 +180,8 @@ class ThermalModel {
   double rate_bound(double s, double xs) const
   {
     const double c = barrier_scale(xs) * inv_theta;
+    // the top of a life's ladder (s >= xs, q = 0): e^(ln omega - c 0) margined, kept
+    if (spec.q == 0.0 && !(s < xs) && std::isfinite(c)) return top_rate;
     double u = s < xs ? 1.0 - s / xs : 0.0;
     if (spec.q > 0.0) u = std::min(1.0, std::max(u, std::pow(2.0 * spec.q / (3.0 * c), 2.0 / 3.0)));
     const double pre = spec.q == 0.0 ? ln_omega : ln_omega + spec.q * std::log(u);
@@ -232,6 +235,7 @@ class ThermalModel {
  private:
   ThermalSpec spec;
   double inv_theta, inv_xc, ln_omega;
+  double top_rate;    // rate_bound() at s >= xs for q = 0
 
   // the barrier scale (x_s/x_c)^p at threshold xs (to rounding: the
   // bounds above carry a margin)
