@@ -999,3 +999,52 @@ TEST(Thinning, NoBoundForAContactNotAttached)
     EXPECT_FALSE(quick(*m, r, 0.0));
   }
 }
+
+// the shortcut at its edge: K an exact power of 2 and lk just below a
+// power of 2 make both of its inequalities tight; caps at the largest
+// value where it would fire without its margin, and at the largest where
+// it fires with it, a few ulps either side.  There the margin (far above
+// the logs' rounding) keeps the result the formula's to the bit: without
+// it, the rounded e ln 2 and logs put the formula below the cap the
+// shortcut returns (about 1 case in 1000 here)
+TEST(ContactModel, BoundRiseShortcutAtItsEdge)
+{
+  auto formula = [](double k, double psi, double d) {
+    const double lk = std::log(k) - psi;
+    double r = ContactModel::BOUND_LOG_STEP;
+    if (lk > 1.0) r = std::max(r, lk - std::log(lk));
+    return std::min(r, d - d / ContactModel::BOUND_LADDER);
+  };
+  const double ln2 = 0.69314718055994530942;
+  auto cap_of = [](double d) { return d - d / ContactModel::BOUND_LADDER; };
+  // the largest d whose cap is at most c
+  auto d_at = [&](double c) {
+    double d = c / (1.0 - 1.0 / ContactModel::BOUND_LADDER);
+    while (cap_of(d) > c) d = std::nextafter(d, 0.0);
+    while (cap_of(std::nextafter(d, HUGE_VAL)) <= c) d = std::nextafter(d, HUGE_VAL);
+    return d;
+  };
+  long n = 0;
+  for (int e = -60; e <= 60; ++e)
+    for (int m = 2; m <= 40; ++m)
+      for (double below : {0.0, 4e-16, 1e-15, 1e-14, 1e-12}) {
+        const double k = std::ldexp(1.0, e);
+        const double psi = e * ln2 - std::ldexp(1.0 - below, m);
+        const double y = e * ln2 - psi;
+        if (!(y > 2.0)) continue;
+        const double bound = y - (std::ilogb(y) + 1) * ln2;
+        const double edge = (bound - 1e-9) / (1.0 + 1e-9);    // about where the margin lets it fire
+        for (double c : {bound, edge})
+          for (int u = -3; u <= 3; ++u) {
+            double d = d_at(c);
+            for (int t = 0; t < std::abs(u); ++t) d = std::nextafter(d, u < 0 ? 0.0 : HUGE_VAL);
+            if (!(cap_of(d) > ContactModel::BOUND_LOG_STEP)) continue;
+            const double want = formula(k, psi, d), got = ContactModel::bound_rise(k, psi, d);
+            ++n;
+            ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0)
+                << "K = 2^" << e << ", psi = " << psi << ", d = " << d << ": " << got << " vs "
+                << want;
+          }
+      }
+  EXPECT_GT(n, 100000);
+}

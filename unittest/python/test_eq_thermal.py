@@ -225,3 +225,71 @@ print "B ${{eq_me_kinetic_force}}"
     assert abs(a[2] - F.max()) < 1e-4
     pc = ref.make_params(theta=0.02, aging="log", beta=0.05, tau_a=1.0, delay="exp", tau=10.0)
     assert abs(b - ref.steady_force(1e-4, pc)) < 1e-7
+
+
+DETACH = """
+units lj
+dimension 2
+atom_style atomic
+boundary p p p
+lattice hex 1.1547005383792515
+region box block 0 10 0 20 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+atom_modify sort 0 0.0
+comm_modify cutoff 0.5
+fix c all eq/contacts 1.0 4711 threshold uniform 0.75 1.25 reform none thermal 0.1 1.0 1.0
+fix slide all move linear 0.005 0.0 0.0 units box
+timestep 0.2
+thermo_style custom step f_c[1] f_c[3] f_c[4]
+thermo_modify format float %.17g norm no
+thermo 50
+"""
+
+
+def test_detached_contacts_stay_detached_through_runs_and_restarts(tmp_path):
+    """reform none at T > 0: a contact breaks (thermally or at its
+    threshold) once and stays detached; its row keeps no rate bound, so
+    that the loop's common step, which tests only the bound at T > 0, never
+    takes it for attached.  The attached count only falls, each break
+    detaches one contact (breaks + attached = N), detached contacts carry
+    no force, and runs split with 'pre no' and by a restart file give the
+    uninterrupted run's numbers to the last bit (fix move: positions
+    x0 + v t, independent of when LAMMPS re-wraps them)."""
+    def go(tag, body):
+        d = tmp_path / tag
+        d.mkdir()
+        (d / "in.detach").write_text(DETACH + body)
+        log = eqtools.run_lammps(d / "in.detach", cwd=d)
+        rows = {}
+        for line in log.splitlines():
+            f = line.split()
+            if len(f) == 4 and f[0].isdigit():
+                rows[int(f[0])] = f[1:]
+        return rows, d
+
+    dump = "dump d all custom 600 dump.final id f_c[2] f_c[3]\ndump_modify d sort id\n"
+    ref, dref = go("ref", dump + "run 600\n")
+    after = ("fix c all eq/contacts 1.0 4711 threshold uniform 0.75 1.25 reform none "
+             "thermal 0.1 1.0 1.0\nfix slide all move linear 0.005 0.0 0.0 units box\n"
+             "thermo_style custom step f_c[1] f_c[3] f_c[4]\nthermo_modify format float %.17g norm no\n"
+             "thermo 50\n")
+    split, dsplit = go("split", "run 200\nrun 200 pre no\nwrite_restart detach.rst\nclear\n"
+                       "read_restart detach.rst\natom_modify sort 0 0.0\n" + after + dump + "run 200\n")
+    n = 2 * 10 * 20
+    steps = sorted(ref)
+    attached = [float(ref[s][2]) for s in steps]
+    breaks = [float(ref[s][1]) for s in steps]
+    assert all(b <= a for a, b in zip(attached, attached[1:])), attached
+    assert all(a + b == n for a, b in zip(attached, breaks)), (attached, breaks)
+    assert 0.2 * n < breaks[-1] < n    # many detached, some still attached
+    assert max(split) == 600
+    for s in split:
+        assert split[s] == ref[s], s
+    final = [l.split() for l in (dref / "dump.final").read_text().split("ITEM: ATOMS")[-1]
+             .strip().splitlines()[1:]]
+    gone = [r for r in final if float(r[1]) < 0.0]
+    assert len(gone) == breaks[-1] and all(float(r[2]) == 0.0 for r in gone)
+    assert (dsplit / "dump.final").read_text().split("ITEM: ATOMS")[-1] == \
+        (dref / "dump.final").read_text().split("ITEM: ATOMS")[-1]
