@@ -61,10 +61,10 @@ def lattice(n):
     return 2 * ny, ny
 
 
-def one(n, ranks, fix, driver, steps, out, extra=""):
+def one(n, ranks, fix, driver, steps, out, extra="", v=1.0):
     nx, ny = lattice(n)
     log = eqtools.run_lammps(HERE / "in.bench", {"nx": nx, "ny": ny, "steps": steps, "fix": fix,
-                                                 "driver": driver, "extra": extra},
+                                                 "driver": driver, "extra": extra, "v": v},
                              nprocs=ranks, cwd=out)
     loop = float(re.search(r"Loop time of ([0-9.eE+-]+)", log).group(1))
     natoms = int(re.search(r"for \d+ steps with (\d+) atoms", log).group(1))

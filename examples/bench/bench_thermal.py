@@ -12,12 +12,26 @@ X = 0.1 k on [0, 4] for slider steps dX = 0.05 ... 0.002 with crossing
 exact and step, the same seed (common random numbers); the reference is
 crossing exact at dX = 0.001.
 
+Option --speeds: the slider velocity v (default 1); a contact lives
+about 100/v steps, and the work per life (a new threshold, the budget of
+its thermal hazard, two or three bounds of its rate) weighs 1/(steps per
+life) against the work per step.
+
+Part instructions: the same ratio in instructions (valgrind's callgrind,
+N = 2000, 2000 steps, the run without the fix subtracted): a figure
+without the timing noise of a shared machine.
+
   ./bench_thermal.py                 N = 1e4 and 1e6, 1 rank, minimum of 3
   ./bench_thermal.py --sizes 1e4     a quick check
+  ./bench_thermal.py --sizes 1e4 --speeds 1,0.3,0.1,0.03
+  ./bench_thermal.py --part instructions --speeds 1,0.1
   ./bench_thermal.py --part accuracy
 """
 import argparse
 import math
+import re
+import shutil
+import subprocess
 import sys
 from pathlib import Path
 
@@ -65,36 +79,77 @@ def accuracy(out):
         print(f"{dX:>7g}  {row[0]:>13.2f} {row[1]:>10.2e}   {row[2]:>12.2f} {row[3]:>10.2e}", flush=True)
 
 
+def instructions(out, speeds):
+    """Instructions per contact-step of the fix (callgrind), and the ratio to T = 0."""
+    valgrind = shutil.which("valgrind")
+    if not valgrind:
+        sys.exit("bench_thermal.py --part instructions: needs valgrind (apt-get install valgrind)")
+    nx, ny, steps = 50, 20, 2000
+    natoms = 2 * nx * ny
+
+    def count(fix, extra, v):
+        f = out / "callgrind.out"
+        cmd = [valgrind, "--tool=callgrind", "--trace-children=yes", f"--callgrind-out-file={f}",
+               eqtools.lmp_exe(), "-in", str(HERE / "in.bench"), "-log", "none", "-nocite",
+               "-screen", "none"]
+        for k, val in {"nx": nx, "ny": ny, "steps": steps, "fix": fix, "extra": extra, "v": v}.items():
+            cmd += ["-var", k, str(val)]
+        p = subprocess.run(cmd, cwd=out, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                           env=eqtools.mpi_env())
+        # the process that ran the input (FEQ_LMP may be a wrapper that
+        # execs lmp; MPI may start helper processes): its own total
+        pid = re.search(r"^==(\d+)== Command: .*in\.bench", p.stdout, re.M)
+        m = pid and re.findall(r"^==%s== Collected : (\d+)" % pid.group(1), p.stdout, re.M)
+        if p.returncode != 0 or not m:
+            raise eqtools.RunError("callgrind run failed:\n" + p.stdout[-3000:])
+        return int(m[-1])
+
+    print(f"fix eq/contacts: instructions per contact-step (callgrind; N = {natoms}, {steps} steps, "
+          "the run without the fix subtracted)")
+    print(f"{'v':>6} {'steps/life':>10}  " + "  ".join(f"{c[0]:>24}" for c in CASES))
+    for v in speeds:
+        base = count("no", "", v)
+        per = [(count("yes", extra, v) - base) / (natoms * steps) for _, extra in CASES]
+        cells = "  ".join(f"{c:>12.1f} ({c / per[0]:4.2f}x)  " for c in per)
+        print(f"{v:>6g} {100.0 / v:>10.0f}  {cells}", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--sizes", default="1e4,1e6")
     ap.add_argument("--ranks", default="1")
+    ap.add_argument("--speeds", default="1", help="slider velocities (a life: ~100/v steps)")
     ap.add_argument("--work", type=float, default=1e8, help="contact-steps per run (sets steps)")
     ap.add_argument("--repeat", type=int, default=3, help="runs per configuration (minimum taken)")
     ap.add_argument("--out", default=str(HERE / "out"))
-    ap.add_argument("--part", default="cost", choices=["cost", "accuracy"])
+    ap.add_argument("--part", default="cost", choices=["cost", "accuracy", "instructions"])
     a = ap.parse_args()
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
+    speeds = [float(v) for v in a.speeds.split(",")]
     if a.part == "accuracy":
         accuracy(out)
         return
+    if a.part == "instructions":
+        instructions(out, speeds)
+        return
     print("fix eq/contacts with temperature, aging and delays: ns per contact-step of the fix "
           "(run with the fix minus the run without), minimum of %d" % a.repeat)
-    print(f"{'N':>9} {'ranks':>5} {'steps':>6}  " + "  ".join(f"{c[0]:>24}" for c in CASES))
+    print(f"{'N':>9} {'ranks':>5} {'steps':>6} {'v':>5}  " + "  ".join(f"{c[0]:>24}" for c in CASES))
     for n in [int(float(v)) for v in a.sizes.split(",")]:
         steps = max(100, int(a.work / n))
         for r in [int(v) for v in a.ranks.split(",")]:
-            base = min(one(n, r, "no", "noforce", steps, out)[1] for _ in range(a.repeat))
-            costs = []
-            for _, extra in CASES:
-                best = None
-                for _ in range(a.repeat):
-                    natoms, t, _ = one(n, r, "yes", "noforce", steps, out, extra=extra)
-                    best = t if best is None else min(best, t)
-                costs.append(1e9 * (best - base) / (natoms * steps))
-            cells = "  ".join(f"{c:>12.2f} ({c / costs[0]:4.2f}x)  " for c in costs)
-            print(f"{natoms:>9} {r:>5} {steps:>6}  {cells}", flush=True)
+            for v in speeds:
+                base = min(one(n, r, "no", "noforce", steps, out, v=v)[1] for _ in range(a.repeat))
+                costs = []
+                for _, extra in CASES:
+                    best = None
+                    for _ in range(a.repeat):
+                        natoms, t, _ = one(n, r, "yes", "noforce", steps, out, extra=extra, v=v)
+                        best = t if best is None else min(best, t)
+                    costs.append(1e9 * (best - base) / (natoms * steps))
+                cells = "  ".join(f"{c:>12.2f} ({c / costs[0]:4.2f}x)  " for c in costs)
+                print(f"{natoms:>9} {r:>5} {steps:>6} {v:>5g}  {cells}", flush=True)
     print("(x): the ratio to the fix at T = 0 in the same scene.")
 
 
