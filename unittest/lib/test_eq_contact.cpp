@@ -922,17 +922,21 @@ TEST(Thinning, NewRunWithOtherParametersRemakesTheBound)
   EXPECT_GE(r[CT_BOUND_RATE], hot.thermal_model().rate(r[CS_STRETCH], r[CS_THRESHOLD]));
 }
 
+// the rise of a bound's log rate as level() computed it before the
+// shortcut (ContactModel::bound_rise()): two logarithms
+double bound_rise_formula(double k, double psi, double d)
+{
+  const double lk = std::log(k) - psi;
+  double r = ContactModel::BOUND_LOG_STEP;
+  if (lk > 1.0) r = std::max(r, lk - std::log(lk));
+  return std::min(r, d - d / ContactModel::BOUND_LADDER);
+}
+
 // the bound's rise in log rate with the logs skipped where the ladder's
 // cap decides equals the formula with them, to the bit, over decades of
 // K and psi and at the edges (0, subnormal, infinite, NaN)
 TEST(ContactModel, BoundRiseShortcutIsExact)
 {
-  auto formula = [](double k, double psi, double d) {
-    const double lk = std::log(k) - psi;
-    double r = ContactModel::BOUND_LOG_STEP;
-    if (lk > 1.0) r = std::max(r, lk - std::log(lk));
-    return std::min(r, d - d / ContactModel::BOUND_LADDER);
-  };
   auto same = [](double a, double b) {
     return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0;
   };
@@ -948,7 +952,8 @@ TEST(ContactModel, BoundRiseShortcutIsExact)
     for (double psi : psis) {
       const double d = ln_omega - psi;
       if (!(d > 0.5 * ContactModel::BOUND_LOG_STEP) && !std::isnan(d)) continue;
-      const double want = formula(k, psi, d), got = ContactModel::bound_rise(k, psi, d);
+      const double want = bound_rise_formula(k, psi, d);
+      const double got = ContactModel::bound_rise(k, psi, d);
       ++n;
       if (same(got, d - d / ContactModel::BOUND_LADDER)) ++shortcut_cases;
       ASSERT_TRUE(same(got, want)) << "K = " << k << ", psi = " << psi << ": " << got << " vs "
@@ -1009,12 +1014,6 @@ TEST(Thinning, NoBoundForAContactNotAttached)
 // shortcut returns (about 1 case in 1000 here)
 TEST(ContactModel, BoundRiseShortcutAtItsEdge)
 {
-  auto formula = [](double k, double psi, double d) {
-    const double lk = std::log(k) - psi;
-    double r = ContactModel::BOUND_LOG_STEP;
-    if (lk > 1.0) r = std::max(r, lk - std::log(lk));
-    return std::min(r, d - d / ContactModel::BOUND_LADDER);
-  };
   const double ln2 = 0.69314718055994530942;
   auto cap_of = [](double d) { return d - d / ContactModel::BOUND_LADDER; };
   // the largest d whose cap is at most c
@@ -1039,7 +1038,8 @@ TEST(ContactModel, BoundRiseShortcutAtItsEdge)
             double d = d_at(c);
             for (int t = 0; t < std::abs(u); ++t) d = std::nextafter(d, u < 0 ? 0.0 : HUGE_VAL);
             if (!(cap_of(d) > ContactModel::BOUND_LOG_STEP)) continue;
-            const double want = formula(k, psi, d), got = ContactModel::bound_rise(k, psi, d);
+            const double want = bound_rise_formula(k, psi, d);
+            const double got = ContactModel::bound_rise(k, psi, d);
             ++n;
             ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0)
                 << "K = 2^" << e << ", psi = " << psi << ", d = " << d << ": " << got << " vs "
