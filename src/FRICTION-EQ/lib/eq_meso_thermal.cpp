@@ -36,6 +36,8 @@ const double EMPTY = 1e-20;     // what is left of a (row, panel) below this bre
 const double SPLIT_SLACK = 1e-9;    // relative excess of du a sub-step may have
 
 enum Slot { TAG, XPOS, JLO, JHI, RATE, DET, MASS, STRETCH, NHEAD };
+// after the rows, with an exponential delay only: the waiting mass
+enum PoolSlot { WAIT, NPOOL };
 
 std::string fmt(double v) { return format_number(v, 6); }
 
@@ -56,10 +58,18 @@ ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, doub
   if (start == MEStart::REFORM && !R)
     throw SpecError("start: 'reform' needs a reform distribution (reform none given); allowed: "
                     "relaxed");
-  if (spec.aging != AgingLaw::NONE || (spec.delay != DelayKind::NONE && spec.tau > 0.0) ||
-      spec.rest > 0.0)
-    throw SpecError("thermal: aging, delay and rest are not supported by fix eq/meso (only "
-                    "thermal and barrier)");
+  if (spec.aging != AgingLaw::NONE)
+    throw SpecError("aging: not supported by fix eq/meso yet (thermal, barrier and delay exp "
+                    "are)");
+  if (spec.rest > 0.0)
+    throw SpecError("rest: not supported by fix eq/meso yet (it needs threshold aging)");
+  if (spec.delay == DelayKind::FIXED && spec.tau > 0.0)
+    throw SpecError("delay fixed: not supported by fix eq/meso yet (use delay exp tau)");
+  if (!(spec.tau >= 0.0) || !std::isfinite(spec.tau))
+    throw SpecError("delay: tau must be finite and >= 0 (got " + fmt(spec.tau) + ")");
+  delayed = spec.delay == DelayKind::EXPONENTIAL && spec.tau > 0.0;
+  if (delayed && !R)
+    throw SpecError("delay: needs re-forming contacts (reform delta 0), not reform none");
   if (!(spec.theta >= 0.0) || !(spec.omega > 0.0) || !std::isfinite(spec.omega) ||
       !(spec.xc > 0.0))
     throw SpecError("thermal: need theta >= 0, a finite omega > 0 and x_c > 0");
@@ -74,13 +84,16 @@ ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, doub
     throw GridError("grid: spacing " + fmt(du) + " is too coarse for threshold " + Pc->describe() +
                     " (sd " + fmt(sd) + "); the largest allowed value is " + fmt(dmax));
   const double rows = 2.0 * std::ceil(ytop * inv_du) + 8.0;
-  if (!(NHEAD + rows * (nl + 1) <= MESO_MAX_WIDTH))
-    throw GridError("grid: spacing " + fmt(du) + " needs about " + fmt(NHEAD + rows * (nl + 1)) +
+  const int nextra = delayed ? NPOOL : 0;
+  if (!(NHEAD + rows * (nl + 1) + nextra <= MESO_MAX_WIDTH))
+    throw GridError("grid: spacing " + fmt(du) + " needs about " +
+                    fmt(NHEAD + rows * (nl + 1) + nextra) +
                     " doubles per block with " + std::to_string(nl) +
                     " threshold panels (limit " + std::to_string(MESO_MAX_WIDTH) +
                     "); use a spacing >= " + fmt(min_grid()) + " or fewer labels");
   ncap = int(rows);
-  nwidth = NHEAD + ncap * (nl + 1);
+  pool = NHEAD + ncap * (nl + 1);
+  nwidth = pool + nextra;
   if (!Pc->is_point()) {
     eps_acc = std::max(0.0, 0.25 * sd * inv_du - 1.0);
     eps_max = std::max(0.0, Pc->quantile(0.5) * inv_du - 1.0);
@@ -125,7 +138,7 @@ void ThermalMesoModel::set_panels()
 
 double ThermalMesoModel::min_grid() const
 {
-  const double room = MESO_MAX_WIDTH - NHEAD - 10.0 * (nl + 1);
+  const double room = MESO_MAX_WIDTH - NHEAD - (delayed ? NPOOL : 0) - 10.0 * (nl + 1);
   return room > 0.0 ? 2.0 * ytop * (nl + 1) / room : HUGE_VAL;
 }
 
@@ -251,6 +264,39 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
   }
 }
 
+// mean of t in [0, L] under the density ~ exp(-t/tau) (the mean time at
+// which the mass re-forming within a time L does so)
+double ThermalMesoModel::mean_wait(double L) const
+{
+  const double x = L / spec.tau;
+  if (x < 1e-4) return L * (0.5 - x / 12.0);    // next term L x^3/720: below 1e-16 L
+  return spec.tau - L / std::expm1(x);
+}
+
+// exponential delay over a sub-step X0 -> X1 of time h: the waiting mass
+// re-forms at the rate 1/tau, exactly over h; the mass D broken in the
+// sub-step joins the pool at the mean time of its breaks (from its mean
+// position MX/D; at rest, where the rates are constant in time, at h/2;
+// crossing step: at the end) and the part of it that re-forms within the
+// sub-step does so from then on.  On return D, MX are the mass re-forming
+// in the sub-step and the first moment of its positions (X at the mean
+// re-forming times: X is linear in time).
+void ThermalMesoModel::wait(double *s, double X0, double X1, double h, double &D, double &MX) const
+{
+  const double W = s[pool + WAIT], dX = X1 - X0;
+  double tb = crossing == Crossing::STEP ? h : 0.5 * h;
+  if (crossing != Crossing::STEP && dX != 0.0 && D > 0.0)
+    tb = h * std::min(1.0, std::max(0.0, (MX / D - X0) / dX));
+  const double aW = -W * std::expm1(-h / spec.tau);
+  const double aD = -D * std::expm1(-(h - tb) / spec.tau);
+  s[pool + WAIT] = (W - aW) + (D - aD);
+  const double inv_h = h > 0.0 ? 1.0 / h : 0.0;
+  const double xW = X0 + dX * (mean_wait(h) * inv_h);
+  const double xD = X0 + dX * ((tb + mean_wait(h - tb)) * inv_h);
+  D = aW + aD;
+  MX = aW * xW + aD * xD;
+}
+
 // the mass D broken in a sub-step re-forms unstretched at its mean break
 // position (crossing step: at X1), hat weights on the anchor nodes
 void ThermalMesoModel::reform(double *s, double X0, double X1, double D, double MX) const
@@ -350,9 +396,10 @@ double ThermalMesoModel::advance(double *s, double X1, double eps, double h) con
     const double xb = k == n ? X1 : X0 + (X1 - X0) * (double(k) / double(n));
     double D = 0.0, MX = 0.0;
     substep(s, xa, xb, eps, h / double(n), D, MX);
+    total += D;
+    if (delayed) wait(s, xa, xb, h / double(n), D, MX);
     reform(s, xa, xb, D, MX);
     trim(s);
-    total += D;
     xa = xb;
   }
   s[XPOS] = X1;
@@ -379,6 +426,10 @@ double ThermalMesoModel::detached(const double *s) const
 {
   return s[DET];
 }
+double ThermalMesoModel::waiting(const double *s) const
+{
+  return delayed ? s[pool + WAIT] : 0.0;
+}
 double ThermalMesoModel::rate(const double *s) const
 {
   return s[RATE];
@@ -396,7 +447,7 @@ double ThermalMesoModel::normalization_error(const double *s) const
     const double *r = row(s, j);
     for (int l = 0; l < nl; ++l) mass += r[1 + l];
   }
-  return std::fabs(mass + s[DET] - 1.0);
+  return std::fabs(mass + s[DET] + waiting(s) - 1.0);
 }
 
 bool ThermalMesoModel::valid(const double *s) const
@@ -406,6 +457,7 @@ bool ThermalMesoModel::valid(const double *s) const
   if (!(std::isfinite(lo) && std::isfinite(hi) && lo == std::floor(lo) && hi == std::floor(hi)))
     return false;
   if (!(std::fabs(lo) < 4e15 && hi - lo + 1.0 <= ncap && hi - lo >= -1.0)) return false;
+  if (delayed && !(s[pool + WAIT] >= 0.0 && s[pool + WAIT] <= 1.0 + 1e-12)) return false;
   return std::isfinite(s[XPOS]) && s[DET] >= 0.0;
 }
 
