@@ -87,7 +87,7 @@ struct FixEQMeso::Args {
   feq::Crossing crossing = feq::Crossing::EXACT;
   feq::MEStart start = feq::MEStart::RELAXED;
   feq::ThermalKeywords thermal;
-  bool have_thermal = false, have_barrier = false;
+  bool have_thermal = false, have_barrier = false, have_delay = false;
   int labels = 0;    // 0: not given
 };
 
@@ -206,11 +206,13 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
             : feq::MEStart::REFORM;
       } else if (kw == "screen") {
         parse_screen(args, iarg);
-      } else if (kw == "aging" || kw == "delay" || kw == "rest") {
-        throw feq::SpecError(kw + ": not supported by fix eq/meso (its contacts re-form at once "
-                                  "and do not age); allowed at T > 0: thermal, barrier, labels");
+      } else if (kw == "aging" || kw == "rest") {
+        throw feq::SpecError(kw + ": not supported by fix eq/meso yet (its contacts do not age); "
+                                  "allowed at T > 0: thermal, barrier, labels, delay exp");
       } else if (feq::parse_thermal_keyword(kw, args, iarg, number, a.thermal)) {
-        (kw == "thermal" ? a.have_thermal : a.have_barrier) = true;
+        if (kw == "thermal") a.have_thermal = true;
+        else if (kw == "barrier") a.have_barrier = true;
+        else a.have_delay = true;
       } else if (kw == "labels") {
         if (iarg >= args.size()) throw feq::SpecError("labels: missing value (threshold panels)");
         const std::string &tok = args[iarg++];
@@ -245,6 +247,10 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
   if (a.have_barrier && !thermal_flag)
     error->all(FLERR, "Fix eq/meso barrier: needs thermal with T > 0 (the barrier shapes the "
                       "thermal rate)");
+  const feq::ThermalSpec &ts = a.thermal.spec;
+  if (a.have_delay && !thermal_flag && ts.delay != feq::DelayKind::NONE && ts.tau > 0.0)
+    error->all(FLERR, "Fix eq/meso delay: needs thermal with T > 0 (the delay pool is kept by "
+                      "the thermal kernel; at T = 0 use a tiny T)");
   if (a.labels && !thermal_flag)
     error->all(FLERR, "Fix eq/meso labels: needs thermal with T > 0 (the threshold panels of the "
                       "thermal kernel)");
@@ -265,6 +271,15 @@ void FixEQMeso::parse_screen(const std::vector<std::string> &args, size_t &iarg)
   if (!(lambda_c > 0.0)) throw feq::SpecError("screen: lambda_c must be > 0 (got " + args[iarg - 2] + ")");
   if (!(rcut > 0.0)) throw feq::SpecError("screen: rcut must be > 0 (got " + args[iarg - 1] + ")");
   screen_flag = 1;
+}
+
+// the delay in the restart signature: "" without one (the records of
+// runs without it are as before)
+static std::string delay_record(const feq::ThermalSpec &spec)
+{
+  if (spec.delay == feq::DelayKind::NONE || !(spec.tau > 0.0)) return "";
+  return fmt::format("|delay {} {:.17g}", spec.delay == feq::DelayKind::FIXED ? "fixed" : "exp",
+                     spec.tau);
 }
 
 // the blocks' master equation on its grid (default: 1/8 of the
@@ -306,8 +321,8 @@ void FixEQMeso::make_model(Args &a)
   shaping.add("dir", std::string(1, "xyz"[idir]));
   // at T > 0 only (athermal restart records are as before)
   if (thermal_flag)
-    shaping.add("thermal", fmt::format("{:.17g}|{:.17g}|{:.17g}|{:.17g}|{}", spec.theta,
-                                       spec.omega, spec.p, spec.q, labels));
+    shaping.add("thermal", fmt::format("{:.17g}|{:.17g}|{:.17g}|{:.17g}|{}{}", spec.theta,
+                                       spec.omega, spec.p, spec.q, labels, delay_record(spec)));
 }
 
 // what the arguments must satisfy together; returns the number of blocks

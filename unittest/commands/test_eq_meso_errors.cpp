@@ -209,6 +209,14 @@ TEST_F(EQMesoErrors, Thermal)
     // T = 0: the athermal kernel (no grid needed)
     fix(std::string("100 1.0 ") + T + " thermal 0.0 1.0 1.0");
     command("unfix m");
+    // delay exp at T > 0; delay none or a zero tau: no delay, also at T = 0
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay exp 10");
+    command("run 0 post no");
+    command("unfix m");
+    fix(std::string("100 1.0 ") + T + " delay none");
+    command("unfix m");
+    fix(std::string("100 1.0 ") + T + " delay exp 0");
+    command("unfix m");
   });
   TEST_FAILURE(".*ERROR: Fix eq/meso thermal: needs the grid keyword \\(at T > 0 the screened "
                "thresholds.*",
@@ -223,8 +231,28 @@ TEST_F(EQMesoErrors, Thermal)
                fix(std::string("100 1.0 ") + T + " barrier 1 0"););
   TEST_FAILURE(".*ERROR: Fix eq/meso labels: expected an integer from 1 to 4096.*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 labels 2.5"););
-  TEST_FAILURE(".*ERROR: Fix eq/meso delay: not supported by fix eq/meso.*",
+  // delay exp (lib: a waiting pool); fixed delays, aging and rest are not supported yet
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay fixed: not supported by fix eq/meso yet \\(use delay "
+               "exp tau\\).*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay tau: must be >= 0 \\(got -1\\).*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay exp -1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay tau: expected a number, got 'long'.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay exp long"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay: unknown value 'gamma'; allowed: none, fixed, exp.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay gamma 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay: needs thermal with T > 0.*",
+               fix(std::string("100 1.0 ") + T + " delay exp 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay: needs thermal with T > 0.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.0 1.0 1.0 delay exp 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay: needs re-forming contacts \\(reform delta 0\\), not "
+               "reform none.*",
+               fix(std::string("100 1.0 ") + T + " reform none grid 0.02 thermal 0.05 1.0 1.0 "
+                   "delay exp 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso aging: not supported by fix eq/meso yet.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 aging log 0.1 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso rest: not supported by fix eq/meso yet.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 rest 10"););
   TEST_FAILURE(".*ERROR: Fix eq/meso reform gaussian 0.05 0.1: with thermal, contacts re-form "
                "unstretched \\(reform delta 0\\) or never \\(reform none\\).*",
                fix(std::string("100 1.0 ") + T +
@@ -265,6 +293,32 @@ TEST_F(EQMesoErrors, ThermalRestartOfTheOtherKind)
   TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: the restart file's blocks were made at T > 0 "
                "\\(keyword thermal\\).*",
                fix(std::string("100 1.0 ") + T + " grid 0.02"););
+  // blocks written without a delay read with one (and the reverse): the
+  // signature's keyword thermal carries the delay
+  for (const char *pair : {"|delay exp 10", "delay exp 10|"}) {
+    const std::string spec(pair), w = spec.substr(0, spec.find('|')),
+                                  r = spec.substr(spec.find('|') + 1);
+    HIDE_OUTPUT([&] {
+      command("clear");
+      command("units lj");
+      command("dimension 2");
+      command("atom_style atomic");
+      command("lattice sq 1.0");
+      command("region box block 0 6 0 3 -0.5 0.5");
+      command("create_box 1 box");
+      command("create_atoms 1 box");
+      command("mass 1 1.0");
+      command("comm_modify cutoff 2.0");
+      fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 " + w);
+      command("run 0 post no");
+      command("write_restart eq_meso_kind.restart");
+      command("clear");
+      command("read_restart eq_meso_kind.restart");
+    });
+    TEST_FAILURE(".*ERROR: Fix m eq/meso: thermal differs from that of the run that wrote the "
+                 "restart file.*",
+                 fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 " + r););
+  }
   std::remove("eq_meso_kind.restart");
 }
 
