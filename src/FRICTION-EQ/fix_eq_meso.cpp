@@ -67,7 +67,7 @@ using namespace FixConst;
 namespace {
 const char *KEYWORDS =
     "threshold, reform, grid, dir, crossing, start, drive, stage, screen, window, check, thermal, "
-    "barrier, labels";
+    "barrier, labels, delay";
 // global vector: sum F, <Gamma>, <eps>, <X>, sum drive force, N, X_s,
 // normalization error of the last check, largest Pi0
 enum { V_FORCE, V_RATE, V_EPS, V_DISP, V_FDRIVE, V_COUNT, V_STAGE, V_NORM, V_PI0, NVEC };

@@ -199,7 +199,7 @@ TEST_F(EQMesoErrors, RestartOfOtherThresholds)
   std::remove("eq_meso_thr.restart");
 }
 
-// T > 0: keywords thermal, barrier, labels (lib eq_meso_thermal)
+// T > 0: keywords thermal, barrier, labels, delay (lib eq_meso_thermal)
 TEST_F(EQMesoErrors, Thermal)
 {
   HIDE_OUTPUT([&] {

@@ -1,4 +1,4 @@
-"""fix eq/meso at T > 0 (keywords thermal, barrier, labels; lib
+"""fix eq/meso at T > 0 (keywords thermal, barrier, labels, delay exp; lib
 eq_meso_thermal) and the screening length lambda_s(v, T) (spec
 shared/notes/thermal-aging.md (e), check (f) 8), against independent
 references:
@@ -11,6 +11,9 @@ references:
   solution (eqtools.thermal_screening.chain_lattice, Gamma(eps) =
   r((1 + eps) v)/v), and apart from the seed formula lambda_c (eps0/2)^1/2
   where the two differ;
+- with delay exp tau: F(X) and the attached fraction against eq-me with
+  the same delay, the end against the steady state of
+  tools/eqtools/thermal.py; 1, 2 ranks and a restart bit for bit;
 - 1, 2, 4 ranks and a restart: the same blocks to the last bit;
 - errors of the keywords.
 """
