@@ -208,7 +208,7 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
         parse_screen(args, iarg);
       } else if (kw == "aging" || kw == "rest") {
         throw feq::SpecError(kw + ": not supported by fix eq/meso yet (its contacts do not age); "
-                                  "allowed at T > 0: thermal, barrier, labels, delay exp");
+                                  "allowed at T > 0: thermal, barrier, labels, delay");
       } else if (feq::parse_thermal_keyword(kw, args, iarg, number, a.thermal)) {
         if (kw == "thermal") a.have_thermal = true;
         else if (kw == "barrier") a.have_barrier = true;
@@ -296,6 +296,7 @@ void FixEQMeso::make_model(Args &a)
   const feq::ThermalSpec spec =
       thermal_flag ? a.thermal.finish(force->boltz, a.threshold.dist->mean()) : feq::ThermalSpec();
   const int labels = a.labels ? a.labels : feq::MESO_THERMAL_LABELS;
+  fixed_tau = spec.delay == feq::DelayKind::FIXED ? spec.tau : 0.0;
   if (grid_default) a.du = feq::meso_default_grid(*a.threshold.dist);
   try {
     if (grid_default && !(a.du > 0.0)) throw feq::GridError("grid: zero width");
@@ -374,6 +375,11 @@ int FixEQMeso::setmask()
 void FixEQMeso::init()
 {
   init_blocks();
+  // a fixed delay is held in one bin per step in flight
+  if (fixed_tau > 0.0 && fixed_tau > (feq::MESO_DELAY_BINS - 2) * update->dt)
+    error->all(FLERR, "Fix {} eq/meso delay fixed: tau = {} is {:.6g} time steps, more than the "
+                      "{} a block holds in flight; use a larger timestep, a shorter delay or "
+                      "delay exp", id, fixed_tau, fixed_tau / update->dt, feq::MESO_DELAY_BINS - 2);
   if (screen_flag && comm->mode == 0) {
     // before LAMMPS' neighbor init, whose message about the too large list
     // cutoff names neither this fix nor its keyword; partners() checks the

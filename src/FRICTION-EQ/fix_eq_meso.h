@@ -120,6 +120,7 @@ class FixEQMeso : public FixEQBlocks {
   // the grid of their blocks
   int grid_default, grid_fresh;
   double window_safe;    // smallest safe window with screening (lib meso_min_window)
+  double fixed_tau = 0.0;    // delay fixed tau (0: none): at most MESO_DELAY_BINS - 2 steps
   int window_warned;
   int eps_warned;      // the warning on a load factor beyond the thermal grid's accuracy (this rank)
   double pi0_local;    // largest sum_m Pi_mn of this rank's blocks at the last step

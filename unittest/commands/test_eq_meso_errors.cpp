@@ -231,10 +231,19 @@ TEST_F(EQMesoErrors, Thermal)
                fix(std::string("100 1.0 ") + T + " barrier 1 0"););
   TEST_FAILURE(".*ERROR: Fix eq/meso labels: expected an integer from 1 to 4096.*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 labels 2.5"););
-  // delay exp (lib: a waiting pool); fixed delays, aging and rest are not supported yet
-  TEST_FAILURE(".*ERROR: Fix eq/meso delay fixed: not supported by fix eq/meso yet \\(use delay "
-               "exp tau\\).*",
-               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 1"););
+  // delay exp (lib: a waiting pool), delay fixed (a FIFO); aging and rest are not supported yet
+  // delay fixed: at most MESO_DELAY_BINS - 2 = 1022 steps in flight (timestep 0.005 here)
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 5.11");
+    command("run 0 post no");
+    command("unfix m");
+  });
+  TEST_FAILURE(".*ERROR: Fix m eq/meso delay fixed: tau = 5.111 is 1022.2 time steps, more than the "
+               "1022 a block holds in flight; use a larger timestep, a shorter delay or delay "
+               "exp.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 5.111");
+               command("run 0 post no"););
+  HIDE_OUTPUT([&] { command("unfix m"); });
   TEST_FAILURE(".*ERROR: Fix eq/meso delay tau: must be >= 0 \\(got -1\\).*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay exp -1"););
   TEST_FAILURE(".*ERROR: Fix eq/meso delay tau: expected a number, got 'long'.*",

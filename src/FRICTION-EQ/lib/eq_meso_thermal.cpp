@@ -38,6 +38,10 @@ const double SPLIT_SLACK = 1e-9;    // relative excess of du a sub-step may have
 enum Slot { TAG, XPOS, JLO, JHI, RATE, DET, MASS, STRETCH, NHEAD };
 // after the rows, with an exponential delay only: the waiting mass
 enum PoolSlot { WAIT, NPOOL };
+// after the rows, with a fixed delay only: a ring of MESO_DELAY_BINS bins
+// (start, end, mass: due uniformly over [start, end] from now), oldest
+// first from HEAD, COUNT of them in flight
+enum FifoSlot { FHEAD, FCOUNT, NFIFO };
 
 std::string fmt(double v) { return format_number(v, 6); }
 
@@ -59,16 +63,13 @@ ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, doub
     throw SpecError("start: 'reform' needs a reform distribution (reform none given); allowed: "
                     "relaxed");
   if (spec.aging != AgingLaw::NONE)
-    throw SpecError("aging: not supported by fix eq/meso yet (thermal, barrier and delay exp "
-                    "are)");
+    throw SpecError("aging: not supported by fix eq/meso yet (thermal, barrier and delay are)");
   if (spec.rest > 0.0)
     throw SpecError("rest: not supported by fix eq/meso yet (it needs threshold aging)");
-  if (spec.delay == DelayKind::FIXED && spec.tau > 0.0)
-    throw SpecError("delay fixed: not supported by fix eq/meso yet (use delay exp tau)");
   if (!(spec.tau >= 0.0) || !std::isfinite(spec.tau))
     throw SpecError("delay: tau must be finite and >= 0 (got " + fmt(spec.tau) + ")");
-  delayed = spec.delay == DelayKind::EXPONENTIAL && spec.tau > 0.0;
-  if (delayed && !R)
+  if (spec.tau > 0.0) delay = spec.delay;
+  if (delay != DelayKind::NONE && !R)
     throw SpecError("delay: needs re-forming contacts (reform delta 0), not reform none");
   if (!(spec.theta >= 0.0) || !(spec.omega > 0.0) || !std::isfinite(spec.omega) ||
       !(spec.xc > 0.0))
@@ -84,7 +85,7 @@ ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, doub
     throw GridError("grid: spacing " + fmt(du) + " is too coarse for threshold " + Pc->describe() +
                     " (sd " + fmt(sd) + "); the largest allowed value is " + fmt(dmax));
   const double rows = 2.0 * std::ceil(ytop * inv_du) + 8.0;
-  const int nextra = delayed ? NPOOL : 0;
+  const int nextra = extra_width();
   if (!(NHEAD + rows * (nl + 1) + nextra <= MESO_MAX_WIDTH))
     throw GridError("grid: spacing " + fmt(du) + " needs about " +
                     fmt(NHEAD + rows * (nl + 1) + nextra) +
@@ -136,9 +137,19 @@ void ThermalMesoModel::set_panels()
   }
 }
 
+// doubles after the rows: the waiting pool or the FIFO of a fixed delay
+int ThermalMesoModel::extra_width() const
+{
+  switch (delay) {
+    case DelayKind::EXPONENTIAL: return NPOOL;
+    case DelayKind::FIXED: return NFIFO + 3 * MESO_DELAY_BINS;
+    default: return 0;
+  }
+}
+
 double ThermalMesoModel::min_grid() const
 {
-  const double room = MESO_MAX_WIDTH - NHEAD - (delayed ? NPOOL : 0) - 10.0 * (nl + 1);
+  const double room = MESO_MAX_WIDTH - NHEAD - extra_width() - 10.0 * (nl + 1);
   return room > 0.0 ? 2.0 * ytop * (nl + 1) / room : HUGE_VAL;
 }
 
@@ -284,9 +295,7 @@ double ThermalMesoModel::mean_wait(double L) const
 void ThermalMesoModel::wait(double *s, double X0, double X1, double h, double &D, double &MX) const
 {
   const double W = s[pool + WAIT], dX = X1 - X0;
-  double tb = crossing == Crossing::STEP ? h : 0.5 * h;
-  if (crossing != Crossing::STEP && dX != 0.0 && D > 0.0)
-    tb = h * std::min(1.0, std::max(0.0, (MX / D - X0) / dX));
+  const double tb = break_time(X0, X1, h, D, MX);
   const double aW = -W * std::expm1(-h / spec.tau);
   const double aD = -D * std::expm1(-(h - tb) / spec.tau);
   s[pool + WAIT] = (W - aW) + (D - aD);
@@ -295,6 +304,82 @@ void ThermalMesoModel::wait(double *s, double X0, double X1, double h, double &D
   const double xD = X0 + dX * ((tb + mean_wait(h - tb)) * inv_h);
   D = aW + aD;
   MX = aW * xW + aD * xD;
+}
+
+// the mean time, from the sub-step's start, of the breaks of mass D with
+// first moment MX of their positions in a sub-step X0 -> X1 of time h (X
+// linear in time; at rest, where the rates are constant, h/2; crossing
+// step: at the end)
+double ThermalMesoModel::break_time(double X0, double X1, double h, double D, double MX) const
+{
+  if (crossing == Crossing::STEP) return h;
+  const double dX = X1 - X0;
+  if (dX == 0.0 || !(D > 0.0)) return 0.5 * h;
+  return h * std::min(1.0, std::max(0.0, (MX / D - X0) / dX));
+}
+
+// fixed delay over a sub-step X0 -> X1 of time h: the mass D broken in it
+// is due tau later, spread uniformly over [tau + t_b - w, tau + t_b + w]
+// (t_b the mean time of its breaks, w = min(t_b, h - t_b): the sub-step's
+// window shifted by tau, the mean exact); one bin per advance() call
+// (merge: the later sub-steps of a call widen its bin to the hull of
+// their windows).  Each bin re-forms the part of it due within the
+// sub-step, at X at the middle of that part (X linear in time); the rest
+// stays uniform over what is left of its window.  On return D, MX as
+// wait().  Bin: (start, end, mass), times from the sub-step's start.
+void ThermalMesoModel::fifo(double *s, double X0, double X1, double h, double &D, double &MX,
+                            bool &merge) const
+{
+  double *q = s + pool;
+  long head = long(q[FHEAD]), count = long(q[FCOUNT]);
+  auto bin = [&](long k) { return q + NFIFO + 3 * ((head + k) % MESO_DELAY_BINS); };
+  if (D > 0.0) {
+    const double tb = break_time(X0, X1, h, D, MX), w = std::max(0.0, std::min(tb, h - tb));
+    const double lo = spec.tau + tb - w, hi = spec.tau + tb + w;
+    if (merge && count > 0) {
+      double *b = bin(count - 1);
+      b[0] = std::min(b[0], lo);
+      b[1] = std::max(b[1], hi);
+      b[2] += D;
+    } else {
+      if (count == MESO_DELAY_BINS)
+        throw std::runtime_error("delay fixed: " + std::to_string(count) + " bins of broken "
+                                 "contacts in flight, the most a block holds (tau is more than " +
+                                 std::to_string(MESO_DELAY_BINS - 2) + " time steps)");
+      double *b = bin(count++);
+      b[0] = lo;
+      b[1] = hi;
+      b[2] = D;
+      merge = true;
+    }
+  }
+  const double dX = X1 - X0, inv_h = h > 0.0 ? 1.0 / h : 0.0;
+  double Dr = 0.0, MXr = 0.0;
+  for (long k = 0; k < count; ++k) {
+    double *b = bin(k);
+    if (!(b[0] < h || b[1] <= h)) break;    // the windows are in order
+    const double a = std::max(b[0], 0.0), e = b[1];
+    const bool all = e <= h;
+    const double part = all ? b[2] : b[2] * ((h - a) / (e - a));
+    const double tm = 0.5 * (a + std::min(e, h));
+    Dr += part;
+    MXr += part * (X0 + dX * (tm * inv_h));
+    b[2] = all ? 0.0 : b[2] - part;
+    b[0] = h;
+  }
+  while (count > 0 && bin(0)[2] == 0.0) {
+    head = (head + 1) % MESO_DELAY_BINS;
+    --count;
+  }
+  if (count == 0) merge = false;
+  for (long k = 0; k < count; ++k) {
+    bin(k)[0] -= h;
+    bin(k)[1] -= h;
+  }
+  q[FHEAD] = double(head);
+  q[FCOUNT] = double(count);
+  D = Dr;
+  MX = MXr;
 }
 
 // the mass D broken in a sub-step re-forms unstretched at its mean break
@@ -312,11 +397,11 @@ void ThermalMesoModel::reform(double *s, double X0, double X1, double D, double 
   const long j = static_cast<long>(std::floor(f));
   const double t = f - double(j);
   long lo = long(s[JLO]), hi = long(s[JHI]);
-  const long want_lo = std::min(lo, j), want_hi = std::max(hi, t > 0.0 ? j + 1 : j);
-  if (lo > hi) {    // empty (cannot happen with re-forming contacts)
-    lo = want_lo;
-    hi = lo - 1;
+  if (lo > hi) {    // empty (every contact waiting in a delay): nothing to keep
+    lo = j;
+    hi = j - 1;
   }
+  const long want_lo = std::min(lo, j), want_hi = std::max(hi, t > 0.0 ? j + 1 : j);
   if (want_hi - want_lo + 1 > ncap)
     throw std::logic_error("eq/meso thermal: anchor ring overflow (" +
                            std::to_string(want_hi - want_lo + 1) + " rows > " +
@@ -392,12 +477,14 @@ double ThermalMesoModel::advance(double *s, double X1, double eps, double h) con
   const long n =
       std::max(1L, static_cast<long>(std::ceil(std::fabs(X1 - X0) * inv_du - SPLIT_SLACK)));
   double total = 0.0, xa = X0;
+  bool merge = false;    // fixed delay: this call's bin exists
   for (long k = 1; k <= n; ++k) {
     const double xb = k == n ? X1 : X0 + (X1 - X0) * (double(k) / double(n));
     double D = 0.0, MX = 0.0;
     substep(s, xa, xb, eps, h / double(n), D, MX);
     total += D;
-    if (delayed) wait(s, xa, xb, h / double(n), D, MX);
+    if (delay == DelayKind::EXPONENTIAL) wait(s, xa, xb, h / double(n), D, MX);
+    else if (delay == DelayKind::FIXED) fifo(s, xa, xb, h / double(n), D, MX, merge);
     reform(s, xa, xb, D, MX);
     trim(s);
     xa = xb;
@@ -428,7 +515,13 @@ double ThermalMesoModel::detached(const double *s) const
 }
 double ThermalMesoModel::waiting(const double *s) const
 {
-  return delayed ? s[pool + WAIT] : 0.0;
+  if (delay == DelayKind::EXPONENTIAL) return s[pool + WAIT];
+  if (delay != DelayKind::FIXED) return 0.0;
+  const double *q = s + pool;
+  const long head = long(q[FHEAD]), count = long(q[FCOUNT]);
+  double w = 0.0;
+  for (long k = 0; k < count; ++k) w += q[NFIFO + 3 * ((head + k) % MESO_DELAY_BINS) + 2];
+  return w;
 }
 double ThermalMesoModel::rate(const double *s) const
 {
@@ -457,7 +550,14 @@ bool ThermalMesoModel::valid(const double *s) const
   if (!(std::isfinite(lo) && std::isfinite(hi) && lo == std::floor(lo) && hi == std::floor(hi)))
     return false;
   if (!(std::fabs(lo) < 4e15 && hi - lo + 1.0 <= ncap && hi - lo >= -1.0)) return false;
-  if (delayed && !(s[pool + WAIT] >= 0.0 && s[pool + WAIT] <= 1.0 + 1e-12)) return false;
+  if (delay == DelayKind::FIXED) {
+    const double head = s[pool + FHEAD], count = s[pool + FCOUNT];
+    if (!(head >= 0.0 && head < MESO_DELAY_BINS && head == std::floor(head) && count >= 0.0 &&
+          count <= MESO_DELAY_BINS && count == std::floor(count)))
+      return false;
+  }
+  const double w = waiting(s);
+  if (!(w >= 0.0 && w <= 1.0 + 1e-12)) return false;
   return std::isfinite(s[XPOS]) && s[DET] >= 0.0;
 }
 

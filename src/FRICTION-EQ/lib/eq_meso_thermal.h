@@ -46,12 +46,12 @@
    The two are the same at constant eps (steady sliding, the T -> 0 test)
    and differ when eps jumps.
    A broken contact re-forms at once, unstretched (R = delta(0)), or never
-   (R null, "reform none"), or, with an exponential formation delay of
-   mean tau (spec (b) 1, "delay exp tau"), waits in a pool and re-forms at
-   the rate 1/tau per unit time, unstretched where the block is then, with
-   a fresh threshold; waiting contacts carry no force (attached + waiting
-   = 1).  Other R, aging, fixed delays and rest ages are not supported
-   (SpecError).  Start: all contacts unstretched (relaxed; with
+   (R null, "reform none"), or, with a formation delay (spec (b) 1),
+   waits and re-forms unstretched where the block is then, with a fresh
+   threshold: "delay exp tau" at the rate 1/tau per unit time, "delay
+   fixed tau" exactly tau after it broke.  Waiting contacts carry no
+   force (attached + waiting = 1).  Other R, aging and rest ages are not
+   supported (SpecError).  Start: all contacts unstretched (relaxed; with
    R = delta(0) start reform is the same).  At constant eps this is a
    block of contacts loaded at w = (1 + eps) v: F(X) = F_1((1 + eps) X)/
    (1 + eps) with F_1 the single-slider master equation at velocity w.
@@ -89,6 +89,16 @@
        end.  Both parts re-form at X at their mean re-forming time
        (truncated exponential), hat weights as above.  tau = 0 or delay
        none: the state and the numbers are those without the keyword.
+     * delay fixed tau: a FIFO of bins (start, end, mass) after the rows,
+       one per advance() call in flight (MESO_DELAY_BINS: tau may be up
+       to MESO_DELAY_BINS - 2 calls; more is a std::runtime_error).  The
+       mass broken in a sub-step is due uniformly over [tau + t_b - w,
+       tau + t_b + w], w = min(t_b, h - t_b) (the sub-step's window
+       shifted by tau, the mean exact; the later sub-steps of a call widen
+       the call's bin to the hull); each sub-step re-forms the part of
+       every bin due within it at X at the middle of that part.  (Re-
+       forming a bin at once at its mean time makes the attached fraction
+       first order in the step: measured 20 du^2 at v tau/dX = 270.27.)
    Probability is conserved by construction (broken = re-formed, or
    detached, or waiting).  Errors: O(du^2) from the anchors, O(h_l^2) from the panels
    (midpoint threshold), O(dt^2) relative hazard per step from Simpson.
@@ -120,12 +130,14 @@
    of the exact renewal solution (constant eps, increments 0.37 du, du =
    0.005 ... 0.02; eps = 0: 0.66 ... 0.75 du^2, eps = 0.5: 1.03 ... 1.09
    du^2), and equal to MesoModel to rounding with crossing step.
-   With delay exp (tau = 3 ... 100, v tau = 0.3 ... 1; theta = 0.05, 0.1;
-   eps = 0, 1): F(X) and the attached fraction within 2.9 ... 3.2 du_eff^2
-   of the slider master equation with the same delay, converging at
-   second order (ratio 3.8 ... 3.95); at theta = 0 the steady F_k and n_a
+   With a delay (tau = 3 ... 100, v tau = 0.3 ... 1; theta = 0.05, 0.1;
+   eps = 0, 1; dX = du/2): F(X) within 2.8 ... 3.4 du_eff^2 of the slider
+   master equation with the same delay, the attached fraction within
+   3.4 ... 4.1 (exp) and 6.6 (fixed) du_eff^2, converging at second order
+   (ratio 3.7 ... 4.1); at theta = 0 the steady F_k and n_a with delay exp
    within 0.17 du_eff^2 of the closed forms <x_s^2>/(2 (<x_s> + w tau))
-   and <x_s>/(<x_s> + w tau), w = (1 + eps) v.
+   and <x_s>/(<x_s> + w tau), w = (1 + eps) v, and F(X), n_a(X) with delay
+   fixed within 1.1 du_eff^2 of the renewal solution (dX = 0.37 du).
 
    Cost: 3 exponentials per (row, panel) holding mass per sub-step; rows
    holding mass ~ top/((1 + eps) du) or fewer (thermal breaking empties
@@ -204,13 +216,16 @@ class AthermalBlocks : public BlockModel {
 
 // default number of threshold label panels (fix eq/meso keyword 'labels')
 constexpr int MESO_THERMAL_LABELS = 32;
+// bins of the FIFO of a fixed delay (one per advance() call in flight:
+// tau may be up to MESO_DELAY_BINS - 2 time steps)
+constexpr int MESO_DELAY_BINS = 1024;
 
 class ThermalMesoModel : public BlockModel {
  public:
   // Pc: thresholds; R: delta(0) or nullptr (reform none), anything else a
   // SpecError; du: anchor grid; nlabels: threshold panels (1 for a point
-  // P_c); spec: theta >= 0, omega, p, q, xc, delay exp tau (aging, delay
-  // fixed, rest: SpecError; a delay needs R).
+  // P_c); spec: theta >= 0, omega, p, q, xc, delay exp or fixed tau (aging,
+  // rest: SpecError; a delay needs R).
   // GridError for a grid too coarse for P_c (as MesoModel) or too fine
   // (width() > MESO_MAX_WIDTH).
   ThermalMesoModel(DistributionPtr Pc, DistributionPtr R, double du, const ThermalSpec &spec,
@@ -253,8 +268,8 @@ class ThermalMesoModel : public BlockModel {
   double ytop = 0.0;
   double eps_acc = HUGE_VAL, eps_max = HUGE_VAL;
   int ncap = 0, nwidth = 0;
-  bool delayed = false;    // exponential delay tau > 0: the waiting pool
-  int pool = 0;            // its offset in the state (after the rows)
+  DelayKind delay = DelayKind::NONE;    // NONE also for tau = 0
+  int pool = 0;    // offset of the waiting pool or FIFO in the state (after the rows)
   double tag = 0.0;
 
   void set_panels();
@@ -262,7 +277,10 @@ class ThermalMesoModel : public BlockModel {
   const double *row(const double *s, long j) const;
   double rate_at(double y, double inv_xm, double coef) const;
   void substep(double *s, double X0, double X1, double eps, double h, double &D, double &MX) const;
+  int extra_width() const;
   double mean_wait(double L) const;
+  double break_time(double X0, double X1, double h, double D, double MX) const;
+  void fifo(double *s, double X0, double X1, double h, double &D, double &MX, bool &merge) const;
   void wait(double *s, double X0, double X1, double h, double &D, double &MX) const;
   void reform(double *s, double X0, double X1, double D, double MX) const;
   void trim(double *s) const;
