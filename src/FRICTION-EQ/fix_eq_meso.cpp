@@ -375,11 +375,7 @@ int FixEQMeso::setmask()
 void FixEQMeso::init()
 {
   init_blocks();
-  // a fixed delay is held in one bin per step in flight
-  if (fixed_tau > 0.0 && fixed_tau > (feq::MESO_DELAY_BINS - 2) * update->dt)
-    error->all(FLERR, "Fix {} eq/meso delay fixed: tau = {} is {:.6g} time steps, more than the "
-                      "{} a block holds in flight; use a larger timestep, a shorter delay or "
-                      "delay exp", id, fixed_tau, fixed_tau / update->dt, feq::MESO_DELAY_BINS - 2);
+  check_fixed_delay("");
   if (screen_flag && comm->mode == 0) {
     // before LAMMPS' neighbor init, whose message about the too large list
     // cutoff names neither this fix nor its keyword; partners() checks the
@@ -390,6 +386,35 @@ void FixEQMeso::init()
   }
   if (screen_flag) EQCompat::request_fix_full_list(neighbor, this, instance_me, rcut);
   list_stamp = -1;
+}
+
+/* ----------------------------------------------------------------------
+   a fixed delay is held in one bin per sub-step in flight (a step of the
+   fix, or of its r-RESPA level, moving a block by du or less is one):
+   tau must be at most MESO_DELAY_BINS - 2 such steps; checked at init()
+   and when fix dt/reset changes the timestep (reset_dt())
+------------------------------------------------------------------------- */
+
+void FixEQMeso::check_fixed_delay(const char *when)
+{
+  if (!(fixed_tau > 0.0)) return;
+  double step = update->dt;
+  std::string level;
+  if (utils::strmatch(update->integrate_style, "^respa")) {
+    step = static_cast<Respa *>(update->integrate)->step[ilevel_respa];
+    level = fmt::format(" of r-RESPA level {} (step {})", ilevel_respa + 1, step);
+  }
+  const int most = feq::MESO_DELAY_BINS - 2;
+  if (fixed_tau > most * step)
+    error->all(FLERR,
+               "Fix {} eq/meso delay fixed: tau = {} is {:.6g} time steps{}{}, more than the {} "
+               "a block holds in flight; use a larger timestep, a shorter delay or delay exp",
+               id, fixed_tau, fixed_tau / step, level, when, most);
+}
+
+void FixEQMeso::reset_dt()
+{
+  check_fixed_delay(" after fix dt/reset changed the timestep");
 }
 
 void FixEQMeso::init_list(int /*id*/, NeighList *ptr)

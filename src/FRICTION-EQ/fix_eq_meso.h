@@ -60,6 +60,7 @@ class FixEQMeso : public FixEQBlocks {
   ~FixEQMeso() override;
   int setmask() override;
   void init() override;
+  void reset_dt() override;
   void init_list(int, class NeighList *) override;
   void setup(int) override;
   void min_setup(int) override;
@@ -79,6 +80,7 @@ class FixEQMeso : public FixEQBlocks {
 
  protected:
   void check_restored(int i) override;
+  void check_fixed_delay(const char *when);
 
  public:
   int pack_forward_comm(int, int *, double *, int, int *) override;

@@ -244,6 +244,34 @@ TEST_F(EQMesoErrors, Thermal)
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 5.111");
                command("run 0 post no"););
   HIDE_OUTPUT([&] { command("unfix m"); });
+  // r-RESPA: the fix advances once per step of its level (run_style respa
+  // 2 4: the inner level's step is 0.005/4; tau = 2 is 400 outer steps,
+  // 1600 inner ones)
+  HIDE_OUTPUT([&] {
+    command("run_style respa 2 4");
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 2.0");
+    command("run 0 post no");
+  });
+  TEST_FAILURE(".*ERROR: Fix m eq/meso delay fixed: tau = 2 is 1600 time steps of r-RESPA level 1 "
+               "\\(step 0.00125\\), more than the 1022 a block holds in flight; use a larger "
+               "timestep, a shorter delay or delay exp.*",
+               command("fix_modify m respa 1"); command("run 0 post no"););
+  HIDE_OUTPUT([&] {
+    command("unfix m");
+    command("run_style verlet");
+  });
+  // fix dt/reset changes the timestep without init(): checked in reset_dt()
+  // (tau = 5: 1000 steps of 0.005, 50000 of 1e-4)
+  TEST_FAILURE(".*ERROR: Fix m eq/meso delay fixed: tau = 5 is 50000 time steps after fix "
+               "dt/reset changed the timestep, more than the 1022 a block holds in flight.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 5.0");
+               command("fix dtr all dt/reset 1 NULL 1e-4 0.01 units box");
+               command("run 2 post no"););
+  HIDE_OUTPUT([&] {
+    command("unfix dtr");
+    command("unfix m");
+    command("timestep 0.005");
+  });
   TEST_FAILURE(".*ERROR: Fix eq/meso delay tau: must be >= 0 \\(got -1\\).*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay exp -1"););
   TEST_FAILURE(".*ERROR: Fix eq/meso delay tau: expected a number, got 'long'.*",

@@ -533,7 +533,7 @@ TEST(MesoThermalDelay, FixedDelayAtRest)
     for (int k = 1; k <= 3000; ++k) o.go(0.9, 0.0, 1e-3);
     FAIL() << "no overflow";
   } catch (const std::runtime_error &e) {
-    EXPECT_THAT(e.what(), HasSubstr("delay fixed: 1024 bins"));
+    EXPECT_THAT(e.what(), HasSubstr("more than 1024 bins"));
   }
 }
 
@@ -679,6 +679,82 @@ TEST(MesoThermalDelay, ConstantVelocity)
                 r.kind == Fx ? "fixed" : "exp", r.tau, r.theta,
                 r.v, r.eps, c.transient, c.transient / (eff * eff), f.transient,
                 f.transient / (fine * fine), ratio, ac, af, f.steady, f.relax);
+  }
+}
+
+// the breaks of an eps jump happen at the start of the call, at rest as
+// in motion: T = 0, tau = 1, the block moved to X = 0.9 in no time (0.3
+// broken, waiting), then eps 0 -> 0.2 over a call of h = 0.6 breaks 0.36
+// more at t = 0 (thresholds uniform [0.75, 1.25], all on the anchor 0:
+// exact).  delay exp: 0.66 e^{-0.6} waits at t = 0.6; delay fixed: 0.66
+// waits at t = 0.6, none at t = 1.1 (due at t = 1).  The same at rest and
+// with dX = 1e-12 (continuity)
+TEST(MesoThermalDelay, EpsJumpBreaksAtStart)
+{
+  for (DelayKind kind : {DelayKind::EXPONENTIAL, DelayKind::FIXED}) {
+    const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), 0.01,
+                             delayed(0.0, 1.0, kind), 8);
+    double w[2];
+    for (int i = 0; i < 2; ++i) {
+      const double X = 0.9 + (i ? 1e-12 : 0.0);
+      Block b(m);
+      b.go(0.9, 0.0, 0.0);
+      ASSERT_NEAR(m.waiting(b.s.data()), 0.3, 1e-14);
+      b.go(X, 0.2, 0.6);
+      w[i] = m.waiting(b.s.data());
+      const double exact = kind == DelayKind::FIXED ? 0.66 : 0.66 * std::exp(-0.6);
+      EXPECT_NEAR(w[i], exact, 1e-11) << "kind " << int(kind) << " dX " << X - 0.9;
+      b.go(X, 0.2, 0.5);
+      if (kind == DelayKind::FIXED) {
+        EXPECT_EQ(m.waiting(b.s.data()), 0.0) << "dX " << X - 0.9;
+        EXPECT_NEAR(m.attached(b.s.data()), 1.0, 1e-14);
+      } else {
+        EXPECT_NEAR(m.waiting(b.s.data()), 0.66 * std::exp(-1.1), 1e-12) << "dX " << X - 0.9;
+      }
+    }
+    EXPECT_NEAR(w[0], w[1], 1e-11) << "kind " << int(kind);
+  }
+}
+
+// a fixed delay with steps of several du (several sub-steps per call):
+// one FIFO bin per sub-step, so the error is that of steps of du (bounds
+// as ConstantVelocity at dX = du/2: 5 du^2 for F, 10 du^2 for n_a; a bin
+// per call spread over the call's window made n_a first order in the
+// step: 30 du^2 at dX = 4 du, 105 du^2 at 8 du); the exponential delay
+// likewise
+TEST(MesoThermalDelay, FixedDelayLongSteps)
+{
+  const double du = 0.01, v = 1e-2;
+  for (DelayKind kind : {DelayKind::FIXED, DelayKind::EXPONENTIAL}) {
+    for (double n : {0.5, 4.0, 8.0}) {
+      double ea = 0.0;
+      const VelocityError e =
+          error_vs_slider(delayed(0.05, 30.0, kind), v, 0.0, du, 16, n * du, 4.0, &ea);
+      std::printf("delay %s 30 dX = %g du: max |F - F_ref| %.3e (%.2f du^2), n_a %.3e (%.2f "
+                  "du^2)\n", kind == DelayKind::FIXED ? "fixed" : "exp", n, e.transient,
+                  e.transient / (du * du), ea, ea / (du * du));
+      EXPECT_LT(e.transient, 5.0 * du * du) << "dX " << n << " du";
+      EXPECT_LT(ea, 10.0 * du * du) << "dX " << n << " du";
+    }
+  }
+}
+
+// a fixed delay holds one bin per sub-step in flight: a block moving
+// 4 du per step (back and forth, contacts breaking thermally in every
+// sub-step) overflows with tau = 300 steps (1200 sub-steps), naming the
+// cause
+TEST(MesoThermalDelay, FixedDelayCapacitySubsteps)
+{
+  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), 0.01,
+                           delayed(0.05, 300.0, DelayKind::FIXED), 8);
+  Block b(m);
+  b.go(0.3, 0.0, 0.0);
+  try {
+    for (int k = 1; k <= 400; ++k) b.go(k % 2 ? 0.34 : 0.3, 0.0, 1.0);
+    FAIL() << "no overflow";
+  } catch (const std::runtime_error &e) {
+    EXPECT_THAT(e.what(), HasSubstr("delay fixed: tau = 300"));
+    EXPECT_THAT(e.what(), HasSubstr("the block moved 4 du in this step"));
   }
 }
 

@@ -204,11 +204,18 @@ double ThermalMesoModel::rate_at(double y, double inv_xm, double coef) const
 
 // one sub-step X0 -> X1 (|X1 - X0| <= du) over the time h: the thermal
 // breaks, then the threshold crossings; D, MX: broken mass and its first
-// moment of the break positions
+// moment of the break positions; DT: its first moment of the break times
+// from the sub-step's start (crossings when X passes them, those of an
+// eps jump at 0, thermal breaks at their Simpson-weighted mean time)
 void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, double h, double &D,
-                               double &MX) const
+                               double &MX, double &DT) const
 {
   const double g = 1.0 + eps, Xm = 0.5 * (X0 + X1);
+  const double dX = X1 - X0;
+  // the time at which X passes pos (at rest: the start)
+  auto when = [&](double pos) {
+    return dX == 0.0 ? 0.0 : h * std::min(1.0, std::max(0.0, (pos - X0) / dX));
+  };
   const double Xlo = std::min(X0, X1), Xhi = std::max(X0, X1);
   const bool thermal = spec.theta > 0.0 && h > 0.0;
   const long jlo = long(s[JLO]), jhi = long(s[JHI]);
@@ -216,10 +223,11 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
     double *r = row(s, j);
     const double A = double(j) * du;
     if (std::min(X0, X1) - A <= -ytop) {    // compressed beyond every threshold
-      const double pos = std::min(Xhi, std::max(Xlo, A - ytop));
+      const double pos = std::min(Xhi, std::max(Xlo, A - ytop)), tp = when(pos);
       for (int l = 0; l < nl; ++l) {
         D += r[1 + l];
         MX += r[1 + l] * pos;
+        DT += r[1 + l] * tp;
         r[1 + l] = 0.0;
       }
       continue;
@@ -247,6 +255,7 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
         r[1 + l] = b == m ? 0.0 : m - b;
         D += b;
         MX += b * ((n0 * X0 + 4.0 * nm * Xm + n1 * X1) / sum);
+        DT += b * (h * ((2.0 * nm + n1) / sum));
       }
     }
     const double ynew = g * std::max(d0, d1);
@@ -270,6 +279,7 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
       r[1 + l] = b == m ? 0.0 : m - b;
       D += b;
       MX += b * pos;
+      DT += b * (at_start ? 0.0 : when(pos));
     }
     r[0] = ynew;
   }
@@ -286,16 +296,16 @@ double ThermalMesoModel::mean_wait(double L) const
 
 // exponential delay over a sub-step X0 -> X1 of time h: the waiting mass
 // re-forms at the rate 1/tau, exactly over h; the mass D broken in the
-// sub-step joins the pool at the mean time of its breaks (from its mean
-// position MX/D; at rest, where the rates are constant in time, at h/2;
-// crossing step: at the end) and the part of it that re-forms within the
+// sub-step joins the pool at the mean time of its breaks (DT/D; crossing
+// step: at the end) and the part of it that re-forms within the
 // sub-step does so from then on.  On return D, MX are the mass re-forming
 // in the sub-step and the first moment of its positions (X at the mean
 // re-forming times: X is linear in time).
-void ThermalMesoModel::wait(double *s, double X0, double X1, double h, double &D, double &MX) const
+void ThermalMesoModel::wait(double *s, double X0, double X1, double h, double &D, double &MX,
+                            double DT) const
 {
   const double W = s[pool + WAIT], dX = X1 - X0;
-  const double tb = break_time(X0, X1, h, D, MX);
+  const double tb = break_time(h, D, DT);
   const double aW = -W * std::expm1(-h / spec.tau);
   const double aD = -D * std::expm1(-(h - tb) / spec.tau);
   s[pool + WAIT] = (W - aW) + (D - aD);
@@ -307,51 +317,44 @@ void ThermalMesoModel::wait(double *s, double X0, double X1, double h, double &D
 }
 
 // the mean time, from the sub-step's start, of the breaks of mass D with
-// first moment MX of their positions in a sub-step X0 -> X1 of time h (X
-// linear in time; at rest, where the rates are constant, h/2; crossing
-// step: at the end)
-double ThermalMesoModel::break_time(double X0, double X1, double h, double D, double MX) const
+// first moment DT of their times in a sub-step of time h (crossing step:
+// at the end)
+double ThermalMesoModel::break_time(double h, double D, double DT) const
 {
   if (crossing == Crossing::STEP) return h;
-  const double dX = X1 - X0;
-  if (dX == 0.0 || !(D > 0.0)) return 0.5 * h;
-  return h * std::min(1.0, std::max(0.0, (MX / D - X0) / dX));
+  if (!(D > 0.0)) return 0.5 * h;
+  return std::min(h, std::max(0.0, DT / D));
 }
 
 // fixed delay over a sub-step X0 -> X1 of time h: the mass D broken in it
 // is due tau later, spread uniformly over [tau + t_b - w, tau + t_b + w]
-// (t_b the mean time of its breaks, w = min(t_b, h - t_b): the sub-step's
-// window shifted by tau, the mean exact); one bin per advance() call
-// (merge: the later sub-steps of a call widen its bin to the hull of
-// their windows).  Each bin re-forms the part of it due within the
+// (t_b = DT/D the mean time of its breaks, w = min(t_b, h - t_b): within
+// the sub-step's window shifted by tau, the mean exact); one bin per
+// sub-step (std::runtime_error when MESO_DELAY_BINS are in flight).  Each
+// bin re-forms the part of it due within the
 // sub-step, at X at the middle of that part (X linear in time); the rest
 // stays uniform over what is left of its window.  On return D, MX as
 // wait().  Bin: (start, end, mass), times from the sub-step's start.
 void ThermalMesoModel::fifo(double *s, double X0, double X1, double h, double &D, double &MX,
-                            bool &merge) const
+                            double DT, long nsub) const
 {
   double *q = s + pool;
   long head = long(q[FHEAD]), count = long(q[FCOUNT]);
   auto bin = [&](long k) { return q + NFIFO + 3 * ((head + k) % MESO_DELAY_BINS); };
   if (D > 0.0) {
-    const double tb = break_time(X0, X1, h, D, MX), w = std::max(0.0, std::min(tb, h - tb));
-    const double lo = spec.tau + tb - w, hi = spec.tau + tb + w;
-    if (merge && count > 0) {
-      double *b = bin(count - 1);
-      b[0] = std::min(b[0], lo);
-      b[1] = std::max(b[1], hi);
-      b[2] += D;
-    } else {
-      if (count == MESO_DELAY_BINS)
-        throw std::runtime_error("delay fixed: " + std::to_string(count) + " bins of broken "
-                                 "contacts in flight, the most a block holds (tau is more than " +
-                                 std::to_string(MESO_DELAY_BINS - 2) + " time steps)");
-      double *b = bin(count++);
-      b[0] = lo;
-      b[1] = hi;
-      b[2] = D;
-      merge = true;
-    }
+    const double tb = break_time(h, D, DT), w = std::max(0.0, std::min(tb, h - tb));
+    if (count == MESO_DELAY_BINS)
+      throw std::runtime_error(
+          "delay fixed: tau = " + fmt(spec.tau) + " needs more than " +
+          std::to_string(MESO_DELAY_BINS) + " bins of broken contacts in flight, the most a " +
+          "block holds (one per sub-step of the grid du = " + fmt(du) + ": the block moved " +
+          std::to_string(nsub) + " du in this step, and tau is " + fmt(spec.tau / h) +
+          " such sub-steps); use a smaller timestep or a larger grid (fewer sub-steps per step), "
+          "a shorter delay, or delay exp");
+    double *b = bin(count++);
+    b[0] = spec.tau + tb - w;
+    b[1] = spec.tau + tb + w;
+    b[2] = D;
   }
   const double dX = X1 - X0, inv_h = h > 0.0 ? 1.0 / h : 0.0;
   double Dr = 0.0, MXr = 0.0;
@@ -371,7 +374,6 @@ void ThermalMesoModel::fifo(double *s, double X0, double X1, double h, double &D
     head = (head + 1) % MESO_DELAY_BINS;
     --count;
   }
-  if (count == 0) merge = false;
   for (long k = 0; k < count; ++k) {
     bin(k)[0] -= h;
     bin(k)[1] -= h;
@@ -477,14 +479,13 @@ double ThermalMesoModel::advance(double *s, double X1, double eps, double h) con
   const long n =
       std::max(1L, static_cast<long>(std::ceil(std::fabs(X1 - X0) * inv_du - SPLIT_SLACK)));
   double total = 0.0, xa = X0;
-  bool merge = false;    // fixed delay: this call's bin exists
   for (long k = 1; k <= n; ++k) {
     const double xb = k == n ? X1 : X0 + (X1 - X0) * (double(k) / double(n));
-    double D = 0.0, MX = 0.0;
-    substep(s, xa, xb, eps, h / double(n), D, MX);
+    double D = 0.0, MX = 0.0, DT = 0.0;
+    substep(s, xa, xb, eps, h / double(n), D, MX, DT);
     total += D;
-    if (delay == DelayKind::EXPONENTIAL) wait(s, xa, xb, h / double(n), D, MX);
-    else if (delay == DelayKind::FIXED) fifo(s, xa, xb, h / double(n), D, MX, merge);
+    if (delay == DelayKind::EXPONENTIAL) wait(s, xa, xb, h / double(n), D, MX, DT);
+    else if (delay == DelayKind::FIXED) fifo(s, xa, xb, h / double(n), D, MX, DT, n);
     reform(s, xa, xb, D, MX);
     trim(s);
     xa = xb;

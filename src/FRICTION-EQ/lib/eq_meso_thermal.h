@@ -80,25 +80,35 @@
        weights (mass and mean anchor exact), with fresh thresholds (P_c
        by panels).  Re-formed contacts do not break again within the
        sub-step (it moves at most du).
+     * break times: substep() also accumulates the first moment of the
+       break TIMES (from the sub-step's start): crossings when X passes
+       them (X linear in time), those of an eps jump at 0 (also at rest),
+       thermal breaks at the Simpson-weighted mean time, compressed rows
+       when X passes A - top; t_b = their mass-weighted mean (crossing
+       step: h).  Not inferred from the mean position (lost at rest, and
+       cancelling when dX is tiny); the no-delay path does not use it.
      * delay exp tau (instead of re-forming at once): the pool W (one
        double after the rows) loses W (1 - e^{-h/tau}) over the sub-step
        of time h, exactly; the mass broken in the sub-step joins it at
-       the mean time of its breaks t_b (from the mean break position: X is
-       linear in time; at rest h/2, the rates being constant; crossing
-       step: h) and (1 - e^{-(h - t_b)/tau}) of it re-forms before the
+       the mean time of its breaks t_b and (1 - e^{-(h - t_b)/tau}) of it
+       re-forms before the
        end.  Both parts re-form at X at their mean re-forming time
        (truncated exponential), hat weights as above.  tau = 0 or delay
        none: the state and the numbers are those without the keyword.
      * delay fixed tau: a FIFO of bins (start, end, mass) after the rows,
-       one per advance() call in flight (MESO_DELAY_BINS: tau may be up
-       to MESO_DELAY_BINS - 2 calls; more is a std::runtime_error).  The
-       mass broken in a sub-step is due uniformly over [tau + t_b - w,
-       tau + t_b + w], w = min(t_b, h - t_b) (the sub-step's window
-       shifted by tau, the mean exact; the later sub-steps of a call widen
-       the call's bin to the hull); each sub-step re-forms the part of
-       every bin due within it at X at the middle of that part.  (Re-
-       forming a bin at once at its mean time makes the attached fraction
-       first order in the step: measured 20 du^2 at v tau/dX = 270.27.)
+       one per SUB-STEP in flight (MESO_DELAY_BINS: tau may be up to
+       MESO_DELAY_BINS - 2 = 1022 sub-steps, i.e. 1022 calls where a
+       block moves du or less per call, fewer where it moves more; more is
+       a std::runtime_error naming tau, the sub-steps of the call and the
+       remedies).  The mass broken in a sub-step is due uniformly over
+       [tau + t_b - w, tau + t_b + w], w = min(t_b, h - t_b) (within the
+       sub-step's window shifted by tau, the mean re-forming time is the
+       mean break time + tau); each sub-step re-forms the part of every
+       bin due within it at X at the middle of that part.  (Re-forming a
+       bin at once at its mean time makes the attached fraction first
+       order in the step: measured 20 du^2 at v tau/dX = 270.27; so did
+       one bin per call spread over the hull of its sub-steps' windows,
+       which moves the mean: 25 du^2 at dX = 4 du, 99 du^2 at 8 du.)
    Probability is conserved by construction (broken = re-formed, or
    detached, or waiting).  Errors: O(du^2) from the anchors, O(h_l^2) from the panels
    (midpoint threshold), O(dt^2) relative hazard per step from Simpson.
@@ -134,7 +144,9 @@
    eps = 0, 1; dX = du/2): F(X) within 2.8 ... 3.4 du_eff^2 of the slider
    master equation with the same delay, the attached fraction within
    3.4 ... 4.1 (exp) and 6.6 (fixed) du_eff^2, converging at second order
-   (ratio 3.7 ... 4.1); at theta = 0 the steady F_k and n_a with delay exp
+   (ratio 3.7 ... 4.1); with steps of 4 and 8 du (theta = 0.05, v = 1e-2,
+   tau = 30, 16 panels) F within 3.2 (fixed) and 3.4 (exp) du^2, the
+   attached fraction within 4.9 (fixed) and 4.3 (exp) du^2; at theta = 0 the steady F_k and n_a with delay exp
    within 0.17 du_eff^2 of the closed forms <x_s^2>/(2 (<x_s> + w tau))
    and <x_s>/(<x_s> + w tau), w = (1 + eps) v, and F(X), n_a(X) with delay
    fixed within 1.1 du_eff^2 of the renewal solution (dX = 0.37 du).
@@ -276,12 +288,14 @@ class ThermalMesoModel : public BlockModel {
   double *row(double *s, long j) const;
   const double *row(const double *s, long j) const;
   double rate_at(double y, double inv_xm, double coef) const;
-  void substep(double *s, double X0, double X1, double eps, double h, double &D, double &MX) const;
+  void substep(double *s, double X0, double X1, double eps, double h, double &D, double &MX,
+               double &DT) const;
   int extra_width() const;
   double mean_wait(double L) const;
-  double break_time(double X0, double X1, double h, double D, double MX) const;
-  void fifo(double *s, double X0, double X1, double h, double &D, double &MX, bool &merge) const;
-  void wait(double *s, double X0, double X1, double h, double &D, double &MX) const;
+  double break_time(double h, double D, double DT) const;
+  void fifo(double *s, double X0, double X1, double h, double &D, double &MX, double DT,
+            long nsub) const;
+  void wait(double *s, double X0, double X1, double h, double &D, double &MX, double DT) const;
   void reform(double *s, double X0, double X1, double D, double MX) const;
   void trim(double *s) const;
   void totals(double *s) const;
