@@ -754,7 +754,7 @@ TEST(MesoThermalDelay, FixedDelayCapacitySubsteps)
     FAIL() << "no overflow";
   } catch (const std::runtime_error &e) {
     EXPECT_THAT(e.what(), HasSubstr("delay fixed: tau = 300"));
-    EXPECT_THAT(e.what(), HasSubstr("the block moved 4 du in this step"));
+    EXPECT_THAT(e.what(), HasSubstr("this step moved it 4 du in sub-steps of time 0.25, tau = 1200 of them"));
   }
 }
 

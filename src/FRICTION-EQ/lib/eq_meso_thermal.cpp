@@ -347,10 +347,11 @@ void ThermalMesoModel::fifo(double *s, double X0, double X1, double h, double &D
       throw std::runtime_error(
           "delay fixed: tau = " + fmt(spec.tau) + " needs more than " +
           std::to_string(MESO_DELAY_BINS) + " bins of broken contacts in flight, the most a " +
-          "block holds (one per sub-step of the grid du = " + fmt(du) + ": the block moved " +
-          std::to_string(nsub) + " du in this step, and tau is " + fmt(spec.tau / h) +
-          " such sub-steps); use a smaller timestep or a larger grid (fewer sub-steps per step), "
-          "a shorter delay, or delay exp");
+          "block holds (one per sub-step of the grid du = " + fmt(du) + ": a step moving the "
+          "block by n > 1 du holds n; this step moved it " + std::to_string(nsub) +
+          " du in sub-steps of time " + fmt(h) + ", tau = " + fmt(spec.tau / h) +
+          " of them); the bins in flight are about max(tau/dt, |v| tau/du): use a larger "
+          "timestep or a larger grid, a shorter delay, or delay exp");
     double *b = bin(count++);
     b[0] = spec.tau + tb - w;
     b[1] = spec.tau + tb + w;
