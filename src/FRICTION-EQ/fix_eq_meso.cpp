@@ -67,7 +67,7 @@ using namespace FixConst;
 namespace {
 const char *KEYWORDS =
     "threshold, reform, grid, dir, crossing, start, drive, stage, screen, window, check, thermal, "
-    "barrier, labels";
+    "barrier, labels, delay";
 // global vector: sum F, <Gamma>, <eps>, <X>, sum drive force, N, X_s,
 // normalization error of the last check, largest Pi0
 enum { V_FORCE, V_RATE, V_EPS, V_DISP, V_FDRIVE, V_COUNT, V_STAGE, V_NORM, V_PI0, NVEC };
@@ -87,7 +87,7 @@ struct FixEQMeso::Args {
   feq::Crossing crossing = feq::Crossing::EXACT;
   feq::MEStart start = feq::MEStart::RELAXED;
   feq::ThermalKeywords thermal;
-  bool have_thermal = false, have_barrier = false;
+  bool have_thermal = false, have_barrier = false, have_delay = false;
   int labels = 0;    // 0: not given
 };
 
@@ -206,11 +206,13 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
             : feq::MEStart::REFORM;
       } else if (kw == "screen") {
         parse_screen(args, iarg);
-      } else if (kw == "aging" || kw == "delay" || kw == "rest") {
-        throw feq::SpecError(kw + ": not supported by fix eq/meso (its contacts re-form at once "
-                                  "and do not age); allowed at T > 0: thermal, barrier, labels");
+      } else if (kw == "aging" || kw == "rest") {
+        throw feq::SpecError(kw + ": not supported by fix eq/meso yet (its contacts do not age); "
+                                  "allowed at T > 0: thermal, barrier, labels, delay");
       } else if (feq::parse_thermal_keyword(kw, args, iarg, number, a.thermal)) {
-        (kw == "thermal" ? a.have_thermal : a.have_barrier) = true;
+        if (kw == "thermal") a.have_thermal = true;
+        else if (kw == "barrier") a.have_barrier = true;
+        else a.have_delay = true;
       } else if (kw == "labels") {
         if (iarg >= args.size()) throw feq::SpecError("labels: missing value (threshold panels)");
         const std::string &tok = args[iarg++];
@@ -245,6 +247,10 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
   if (a.have_barrier && !thermal_flag)
     error->all(FLERR, "Fix eq/meso barrier: needs thermal with T > 0 (the barrier shapes the "
                       "thermal rate)");
+  const feq::ThermalSpec &ts = a.thermal.spec;
+  if (a.have_delay && !thermal_flag && ts.delay != feq::DelayKind::NONE && ts.tau > 0.0)
+    error->all(FLERR, "Fix eq/meso delay: needs thermal with T > 0 (the delay pool is kept by "
+                      "the thermal kernel; at T = 0 use a tiny T)");
   if (a.labels && !thermal_flag)
     error->all(FLERR, "Fix eq/meso labels: needs thermal with T > 0 (the threshold panels of the "
                       "thermal kernel)");
@@ -267,6 +273,15 @@ void FixEQMeso::parse_screen(const std::vector<std::string> &args, size_t &iarg)
   screen_flag = 1;
 }
 
+// the delay in the restart signature: "" without one (the records of
+// runs without it are as before)
+static std::string delay_record(const feq::ThermalSpec &spec)
+{
+  if (spec.delay == feq::DelayKind::NONE || !(spec.tau > 0.0)) return "";
+  return fmt::format("|delay {} {:.17g}", spec.delay == feq::DelayKind::FIXED ? "fixed" : "exp",
+                     spec.tau);
+}
+
 // the blocks' master equation on its grid (default: 1/8 of the
 // thresholds' standard deviation; a grid the user did not set is not
 // named as the cause when it fails), and what the per-block state
@@ -281,6 +296,7 @@ void FixEQMeso::make_model(Args &a)
   const feq::ThermalSpec spec =
       thermal_flag ? a.thermal.finish(force->boltz, a.threshold.dist->mean()) : feq::ThermalSpec();
   const int labels = a.labels ? a.labels : feq::MESO_THERMAL_LABELS;
+  fixed_tau = spec.delay == feq::DelayKind::FIXED ? spec.tau : 0.0;
   if (grid_default) a.du = feq::meso_default_grid(*a.threshold.dist);
   try {
     if (grid_default && !(a.du > 0.0)) throw feq::GridError("grid: zero width");
@@ -306,8 +322,8 @@ void FixEQMeso::make_model(Args &a)
   shaping.add("dir", std::string(1, "xyz"[idir]));
   // at T > 0 only (athermal restart records are as before)
   if (thermal_flag)
-    shaping.add("thermal", fmt::format("{:.17g}|{:.17g}|{:.17g}|{:.17g}|{}", spec.theta,
-                                       spec.omega, spec.p, spec.q, labels));
+    shaping.add("thermal", fmt::format("{:.17g}|{:.17g}|{:.17g}|{:.17g}|{}{}", spec.theta,
+                                       spec.omega, spec.p, spec.q, labels, delay_record(spec)));
 }
 
 // what the arguments must satisfy together; returns the number of blocks
@@ -359,6 +375,7 @@ int FixEQMeso::setmask()
 void FixEQMeso::init()
 {
   init_blocks();
+  check_fixed_delay("");
   if (screen_flag && comm->mode == 0) {
     // before LAMMPS' neighbor init, whose message about the too large list
     // cutoff names neither this fix nor its keyword; partners() checks the
@@ -369,6 +386,35 @@ void FixEQMeso::init()
   }
   if (screen_flag) EQCompat::request_fix_full_list(neighbor, this, instance_me, rcut);
   list_stamp = -1;
+}
+
+/* ----------------------------------------------------------------------
+   a fixed delay is held in one bin per sub-step in flight (a step of the
+   fix, or of its r-RESPA level, moving a block by du or less is one):
+   tau must be at most MESO_DELAY_BINS - 2 such steps; checked at init()
+   and when fix dt/reset changes the timestep (reset_dt())
+------------------------------------------------------------------------- */
+
+void FixEQMeso::check_fixed_delay(const char *when)
+{
+  if (!(fixed_tau > 0.0)) return;
+  double step = update->dt;
+  std::string level;
+  if (utils::strmatch(update->integrate_style, "^respa")) {
+    step = static_cast<Respa *>(update->integrate)->step[ilevel_respa];
+    level = fmt::format(" of r-RESPA level {} (step {})", ilevel_respa + 1, step);
+  }
+  const int most = feq::MESO_DELAY_BINS - 2;
+  if (fixed_tau > most * step)
+    error->all(FLERR,
+               "Fix {} eq/meso delay fixed: tau = {} is {:.6g} time steps{}{}, more than the {} "
+               "a block holds in flight; use a larger timestep, a shorter delay or delay exp",
+               id, fixed_tau, fixed_tau / step, level, when, most);
+}
+
+void FixEQMeso::reset_dt()
+{
+  check_fixed_delay(" after fix dt/reset changed the timestep");
 }
 
 void FixEQMeso::init_list(int /*id*/, NeighList *ptr)

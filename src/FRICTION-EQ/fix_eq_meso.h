@@ -60,6 +60,7 @@ class FixEQMeso : public FixEQBlocks {
   ~FixEQMeso() override;
   int setmask() override;
   void init() override;
+  void reset_dt() override;
   void init_list(int, class NeighList *) override;
   void setup(int) override;
   void min_setup(int) override;
@@ -79,6 +80,7 @@ class FixEQMeso : public FixEQBlocks {
 
  protected:
   void check_restored(int i) override;
+  void check_fixed_delay(const char *when);
 
  public:
   int pack_forward_comm(int, int *, double *, int, int *) override;
@@ -120,6 +122,7 @@ class FixEQMeso : public FixEQBlocks {
   // the grid of their blocks
   int grid_default, grid_fresh;
   double window_safe;    // smallest safe window with screening (lib meso_min_window)
+  double fixed_tau = 0.0;    // delay fixed tau (0: none): at most MESO_DELAY_BINS - 2 steps
   int window_warned;
   int eps_warned;      // the warning on a load factor beyond the thermal grid's accuracy (this rank)
   double pi0_local;    // largest sum_m Pi_mn of this rank's blocks at the last step

@@ -199,7 +199,7 @@ TEST_F(EQMesoErrors, RestartOfOtherThresholds)
   std::remove("eq_meso_thr.restart");
 }
 
-// T > 0: keywords thermal, barrier, labels (lib eq_meso_thermal)
+// T > 0: keywords thermal, barrier, labels, delay (lib eq_meso_thermal)
 TEST_F(EQMesoErrors, Thermal)
 {
   HIDE_OUTPUT([&] {
@@ -208,6 +208,14 @@ TEST_F(EQMesoErrors, Thermal)
     command("unfix m");
     // T = 0: the athermal kernel (no grid needed)
     fix(std::string("100 1.0 ") + T + " thermal 0.0 1.0 1.0");
+    command("unfix m");
+    // delay exp at T > 0; delay none or a zero tau: no delay, also at T = 0
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay exp 10");
+    command("run 0 post no");
+    command("unfix m");
+    fix(std::string("100 1.0 ") + T + " delay none");
+    command("unfix m");
+    fix(std::string("100 1.0 ") + T + " delay exp 0");
     command("unfix m");
   });
   TEST_FAILURE(".*ERROR: Fix eq/meso thermal: needs the grid keyword \\(at T > 0 the screened "
@@ -223,8 +231,65 @@ TEST_F(EQMesoErrors, Thermal)
                fix(std::string("100 1.0 ") + T + " barrier 1 0"););
   TEST_FAILURE(".*ERROR: Fix eq/meso labels: expected an integer from 1 to 4096.*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 labels 2.5"););
-  TEST_FAILURE(".*ERROR: Fix eq/meso delay: not supported by fix eq/meso.*",
-               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 1"););
+  // delay exp (lib: a waiting pool), delay fixed (a FIFO); aging and rest are not supported yet
+  // delay fixed: at most MESO_DELAY_BINS - 2 = 1022 steps in flight (timestep 0.005 here)
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 5.11");
+    command("run 0 post no");
+    command("unfix m");
+  });
+  TEST_FAILURE(".*ERROR: Fix m eq/meso delay fixed: tau = 5.111 is 1022.2 time steps, more than the "
+               "1022 a block holds in flight; use a larger timestep, a shorter delay or delay "
+               "exp.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 5.111");
+               command("run 0 post no"););
+  HIDE_OUTPUT([&] { command("unfix m"); });
+  // r-RESPA: the fix advances once per step of its level (run_style respa
+  // 2 4: the inner level's step is 0.005/4; tau = 2 is 400 outer steps,
+  // 1600 inner ones)
+  HIDE_OUTPUT([&] {
+    command("run_style respa 2 4");
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 2.0");
+    command("run 0 post no");
+  });
+  TEST_FAILURE(".*ERROR: Fix m eq/meso delay fixed: tau = 2 is 1600 time steps of r-RESPA level 1 "
+               "\\(step 0.00125\\), more than the 1022 a block holds in flight; use a larger "
+               "timestep, a shorter delay or delay exp.*",
+               command("fix_modify m respa 1"); command("run 0 post no"););
+  HIDE_OUTPUT([&] {
+    command("unfix m");
+    command("run_style verlet");
+  });
+  // fix dt/reset changes the timestep without init(): checked in reset_dt()
+  // (tau = 5: 1000 steps of 0.005, 50000 of 1e-4)
+  TEST_FAILURE(".*ERROR: Fix m eq/meso delay fixed: tau = 5 is 50000 time steps after fix "
+               "dt/reset changed the timestep, more than the 1022 a block holds in flight.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 5.0");
+               command("fix dtr all dt/reset 1 NULL 1e-4 0.01 units box");
+               command("run 2 post no"););
+  HIDE_OUTPUT([&] {
+    command("unfix dtr");
+    command("unfix m");
+    command("timestep 0.005");
+  });
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay tau: must be >= 0 \\(got -1\\).*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay exp -1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay tau: expected a number, got 'long'.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay exp long"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay: unknown value 'gamma'; allowed: none, fixed, exp.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay gamma 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay: needs thermal with T > 0.*",
+               fix(std::string("100 1.0 ") + T + " delay exp 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay: needs thermal with T > 0.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.0 1.0 1.0 delay exp 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay: needs re-forming contacts \\(reform delta 0\\), not "
+               "reform none.*",
+               fix(std::string("100 1.0 ") + T + " reform none grid 0.02 thermal 0.05 1.0 1.0 "
+                   "delay exp 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso aging: not supported by fix eq/meso yet.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 aging log 0.1 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso rest: not supported by fix eq/meso yet.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 rest 10"););
   TEST_FAILURE(".*ERROR: Fix eq/meso reform gaussian 0.05 0.1: with thermal, contacts re-form "
                "unstretched \\(reform delta 0\\) or never \\(reform none\\).*",
                fix(std::string("100 1.0 ") + T +
@@ -265,6 +330,32 @@ TEST_F(EQMesoErrors, ThermalRestartOfTheOtherKind)
   TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: the restart file's blocks were made at T > 0 "
                "\\(keyword thermal\\).*",
                fix(std::string("100 1.0 ") + T + " grid 0.02"););
+  // blocks written without a delay read with one (and the reverse): the
+  // signature's keyword thermal carries the delay
+  for (const char *pair : {"|delay exp 10", "delay exp 10|"}) {
+    const std::string spec(pair), w = spec.substr(0, spec.find('|')),
+                                  r = spec.substr(spec.find('|') + 1);
+    HIDE_OUTPUT([&] {
+      command("clear");
+      command("units lj");
+      command("dimension 2");
+      command("atom_style atomic");
+      command("lattice sq 1.0");
+      command("region box block 0 6 0 3 -0.5 0.5");
+      command("create_box 1 box");
+      command("create_atoms 1 box");
+      command("mass 1 1.0");
+      command("comm_modify cutoff 2.0");
+      fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 " + w);
+      command("run 0 post no");
+      command("write_restart eq_meso_kind.restart");
+      command("clear");
+      command("read_restart eq_meso_kind.restart");
+    });
+    TEST_FAILURE(".*ERROR: Fix m eq/meso: thermal differs from that of the run that wrote the "
+                 "restart file.*",
+                 fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 " + r););
+  }
   std::remove("eq_meso_kind.restart");
 }
 

@@ -51,19 +51,19 @@ struct Block {
 struct VelocityError {
   double transient, steady, relax;    // relax: |F_1 at the end - F_k| (not yet steady)
 };
-VelocityError error_vs_slider(double theta, double v, double eps, double du, int labels,
-                              double dX, double Xmax, double p = 0.0, double q = 0.0)
+// (the attached fraction likewise, against the reference's)
+VelocityError error_vs_slider(const ThermalSpec &spec, double v, double eps, double du,
+                              int labels, double dX, double Xmax, double *attached_error = nullptr)
 {
-  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), du, thermal(theta, p, q),
-                           labels);
+  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), du, spec, labels);
   ThermalSlider sl;
   sl.Pc = make_uniform(0.75, 1.25);
-  sl.spec = thermal(theta, p, q);
+  sl.spec = spec;
   sl.v = (1.0 + eps) * v;
   const double dx = 5e-4;
   const MEResult ref = thermal_transient(sl, dx, (1.0 + eps) * Xmax + 0.01, true);
   Block b(m);
-  double e = 0.0;
+  double e = 0.0, ea = 0.0;
   const long n = long(std::llround(Xmax / dX));
   for (long k = 1; k <= n; ++k) {
     const double X = double(k) * dX;
@@ -75,10 +75,26 @@ VelocityError error_vs_slider(double theta, double v, double eps, double du, int
     const double t = f - double(i);
     const double Fr = (1.0 - t) * ref.F[i] + t * ref.F[i + 1];
     e = std::max(e, std::fabs((1.0 + eps) * b.F() - Fr));
+    const double Ar = (1.0 - t) * ref.attached[i] + t * ref.attached[i + 1];
+    ea = std::max(ea, std::fabs(m.attached(b.s.data()) - Ar));
   }
+  if (attached_error) *attached_error = ea;
   const double Fk = thermal_steady_state(sl).F;
   const double Fend = ref.F[size_t(std::llround((1.0 + eps) * double(n) * dX / dx))];
   return {e, std::fabs((1.0 + eps) * b.F() - Fk), std::fabs(Fend - Fk)};
+}
+VelocityError error_vs_slider(double theta, double v, double eps, double du, int labels,
+                              double dX, double Xmax, double p = 0.0, double q = 0.0)
+{
+  return error_vs_slider(thermal(theta, p, q), v, eps, du, labels, dX, Xmax);
+}
+
+ThermalSpec delayed(double theta, double tau, DelayKind kind = DelayKind::EXPONENTIAL)
+{
+  ThermalSpec s = thermal(theta);
+  s.delay = kind;
+  s.tau = tau;
+  return s;
 }
 
 }    // namespace
@@ -410,4 +426,359 @@ TEST(MesoThermal, LongBackwardMove)
   EXPECT_LT(m.normalization_error(b.s.data()), 1e-12);
   EXPECT_LE(m.rows(b.s.data()), long(2.0 * std::ceil(m.top() / du) + 8.0));
   EXPECT_LT(std::fabs(b.F()), 1.25);
+}
+
+/* ----------------------------------------------------------------------
+   8. exponential formation delay (spec (b) 1): a broken contact waits in
+   a pool of the state and re-forms at the rate 1/tau, unstretched where
+   the block is then.
+------------------------------------------------------------------------- */
+
+// attached + waiting = 1 to rounding under random moves, rests, eps jumps
+// and time steps from << tau to >> tau; the force counts the attached only
+TEST(MesoThermalDelay, ProbabilityConserved)
+{
+  for (DelayKind kind : {DelayKind::EXPONENTIAL, DelayKind::FIXED})
+  for (double tau : {0.05, 0.7, 50.0}) {
+    const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), 0.01,
+                             delayed(0.05, tau, kind), 16);
+    Block b(m);
+    std::mt19937_64 gen(11);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    double X = 0.0, worst = 0.0, wmax = 0.0;
+    for (int k = 0; k < 3000; ++k) {
+      const double r = U(gen);
+      if (r < 0.1) X -= 0.05 * U(gen);
+      else if (r < 0.9) X += 0.02 * U(gen);
+      b.go(X, 3.0 * U(gen) * U(gen), r < 0.95 ? 0.3 * U(gen) : 0.0);
+      worst = std::max(worst, m.normalization_error(b.s.data()));
+      wmax = std::max(wmax, m.waiting(b.s.data()));
+      ASSERT_TRUE(m.valid(b.s.data()));
+      ASSERT_EQ(m.detached(b.s.data()), 0.0);
+    }
+    EXPECT_LT(worst, 1e-13) << "tau " << tau << " kind " << int(kind);
+    EXPECT_GT(wmax, 0.01) << "tau " << tau << " kind " << int(kind);    // the pool was used
+    EXPECT_NEAR(m.attached(b.s.data()) + m.waiting(b.s.data()), 1.0, 1e-13);
+  }
+}
+
+// the pool is one double after the rows; delay 0 or none: the no-delay
+// model, bit for bit (same width, same tag, same numbers)
+TEST(MesoThermalDelay, OffIsUnchanged)
+{
+  const ThermalMesoModel m0(make_uniform(0.75, 1.25), make_delta(0.0), 0.01, thermal(0.05), 16);
+  const ThermalMesoModel mz(make_uniform(0.75, 1.25), make_delta(0.0), 0.01, delayed(0.05, 0.0),
+                            16);
+  const ThermalMesoModel md(make_uniform(0.75, 1.25), make_delta(0.0), 0.01, delayed(0.05, 1.0),
+                            16);
+  EXPECT_EQ(mz.width(), m0.width());
+  EXPECT_EQ(md.width(), m0.width() + 1);
+  EXPECT_FALSE(md.valid(Block(m0).s.data()));
+  const ThermalMesoModel mf(make_uniform(0.75, 1.25), make_delta(0.0), 0.01,
+                            delayed(0.05, 1.0, DelayKind::FIXED), 16);
+  EXPECT_EQ(mf.width(), m0.width() + 2 + 3 * MESO_DELAY_BINS);
+  EXPECT_FALSE(mf.valid(Block(md).s.data()));
+  Block a(m0), z(mz);
+  for (int k = 1; k <= 400; ++k) {
+    a.go(0.004 * k, 0.3, 0.1);
+    z.go(0.004 * k, 0.3, 0.1);
+  }
+  EXPECT_EQ(0, std::memcmp(a.s.data(), z.s.data(), a.s.size() * sizeof(double)));
+}
+
+// the pool at rest, nothing attached breaking (theta = 0, X fixed): it
+// empties as exp(-t/tau) exactly, in one call or in many (to rounding)
+TEST(MesoThermalDelay, PoolDecayAtRest)
+{
+  const double tau = 2.0;
+  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), 0.01, delayed(0.0, tau),
+                           8);
+  Block b(m);
+  b.go(2.0, 0.0, 1e-300);    // everything broken once at least; nearly no time
+  const double W0 = m.waiting(b.s.data());
+  ASSERT_GT(W0, 0.3);
+  Block c = b;
+  b.go(2.0, 0.0, 3.0);
+  for (int k = 0; k < 30; ++k) c.go(2.0, 0.0, 0.1);
+  EXPECT_NEAR(m.waiting(b.s.data()), W0 * std::exp(-3.0 / tau), 1e-15);
+  EXPECT_NEAR(m.waiting(c.s.data()), W0 * std::exp(-3.0 / tau), 1e-14);
+  EXPECT_NEAR(m.attached(b.s.data()) + m.waiting(b.s.data()), 1.0, 1e-14);
+}
+
+// fixed delay at rest: the mass broken at t = 0 waits exactly tau, then
+// re-forms at once (at the block's position); a delay of more than
+// MESO_DELAY_BINS - 2 steps overflows the FIFO (an error)
+TEST(MesoThermalDelay, FixedDelayAtRest)
+{
+  const double tau = 2.0;
+  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), 0.01,
+                           delayed(0.0, tau, DelayKind::FIXED), 8);
+  Block b(m);
+  b.go(2.0, 0.0, 1e-300);    // everything broken once at least; nearly no time
+  const double W0 = m.waiting(b.s.data());
+  ASSERT_GT(W0, 0.3);
+  for (int k = 1; k <= 19; ++k) b.go(2.0, 0.0, 0.1);    // t = 1.9 < tau
+  EXPECT_EQ(m.waiting(b.s.data()), W0);
+  b.go(2.0, 0.0, 0.2);    // t = 2.1 > tau
+  EXPECT_EQ(m.waiting(b.s.data()), 0.0);
+  EXPECT_NEAR(m.attached(b.s.data()), 1.0, 1e-14);
+  EXPECT_NEAR(m.mean_stretch(b.s.data()), 0.0, 1e-14);    // re-formed unstretched at X = 2
+  // overflow: tau = 2000 steps of 1e-3, contacts breaking (thermally, at
+  // rest at X = 0.9) at every step
+  const ThermalMesoModel mo(make_uniform(0.75, 1.25), make_delta(0.0), 0.01,
+                            delayed(0.05, 2.0, DelayKind::FIXED), 8);
+  Block o(mo);
+  o.go(0.7, 0.0, 0.0);
+  try {
+    for (int k = 1; k <= 3000; ++k) o.go(0.9, 0.0, 1e-3);
+    FAIL() << "no overflow";
+  } catch (const std::runtime_error &e) {
+    EXPECT_THAT(e.what(), HasSubstr("more than 1024 bins"));
+  }
+}
+
+// T = 0, constant velocity, constant eps: a block is a slider loaded at
+// w = (1 + eps) v.  Steady state in closed form (spec (c), R = delta(0),
+// exponential delay of mean tau): F_k/(N k_c) = <x_s^2>/(2 (<x_s> + w tau)) / (1 + eps),
+// n_a = <x_s>/(<x_s> + w tau); uniform [0.75, 1.25]: <x_s> = 1, <x_s^2> =
+// 1 + 1/48.  Errors: the grid's O(du_eff^2) (bound 2 du_eff^2 as
+// AthermalLimit, which measured <= 1.1 du_eff^2) and the step's: the
+// re-forming within a step is exact in time, the break time taken at the
+// mean break position; with dX = 0.37 du their sum is below the bound.
+// Run to X = 12 (n_a relaxes as exp(-X/(v tau)), the lives' oscillations
+// decay within a few <L>); also delay -> 0 gives the no-delay block.
+TEST(MesoThermalDelay, SteadyAthermalClosedForm)
+{
+  const double du = 0.01, inc = 0.37 * du, v = 0.1, x2 = 1.0 + 1.0 / 48.0;
+  const DelayKind kind = DelayKind::EXPONENTIAL;
+  for (double eps : {0.0, 0.5}) {
+    for (double tau : {2.0, 10.0}) {
+      const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), du,
+                               delayed(0.0, tau, kind), 16);
+      Block b(m);
+      for (long k = 1; double(k) * inc <= 30.0; ++k) b.go(double(k) * inc, eps, inc / v);
+      const double w = (1.0 + eps) * v, eff = (1.0 + eps) * du;
+      const double Fk = x2 / (2.0 * (1.0 + w * tau)) / (1.0 + eps), na = 1.0 / (1.0 + w * tau);
+      const double eF = std::fabs(b.F() - Fk), ea = std::fabs(m.attached(b.s.data()) - na);
+      EXPECT_LT(eF, 2.0 * eff * eff) << "eps " << eps << " tau " << tau;
+      EXPECT_LT(ea, 2.0 * eff * eff) << "eps " << eps << " tau " << tau;
+      EXPECT_NEAR(m.attached(b.s.data()) + m.waiting(b.s.data()), 1.0, 1e-13);
+      std::printf("T=0 delay %s %g eps %g: F %.8f closed %.8f (%.3f du_eff^2) n_a %.8f closed "
+                  "%.8f (%.3f du_eff^2)\n", kind == DelayKind::FIXED ? "fixed" : "exp", tau, eps, b.F(), Fk, eF / (eff * eff),
+                  m.attached(b.s.data()), na, ea / (eff * eff));
+    }
+  }
+  // tau -> 0: the no-delay block, the difference O(v tau) (F_k changes by
+  // -F_k v tau/<x_s> to first order)
+  const ThermalMesoModel m0(make_uniform(0.75, 1.25), make_delta(0.0), du, thermal(0.0), 16);
+  const ThermalMesoModel ms(make_uniform(0.75, 1.25), make_delta(0.0), du, delayed(0.0, 1e-4),
+                            16);
+  Block a(m0), s(ms);
+  double e = 0.0;
+  for (long k = 1; double(k) * inc <= 8.0; ++k) {
+    a.go(double(k) * inc, 0.0, inc / v);
+    s.go(double(k) * inc, 0.0, inc / v);
+    e = std::max(e, std::fabs(a.F() - s.F()));
+  }
+  EXPECT_LT(e, 2.0 * v * 1e-4);
+  EXPECT_GT(e, 0.0);
+}
+
+// T = 0 with a fixed delay: the lives' oscillations decay slowly (all
+// contacts broken together re-form together), so F(X) and n_a(X) over X
+// in [0, 8] against the slider renewal equation with the fixed delay
+// (thermal_transient: exact survival at T = 0, kinks off its grid: error
+// ~3e-7), bound 2 du_eff^2 as AthermalLimit; also with every contact
+// waiting at once (a jump beyond every threshold, no time)
+TEST(MesoThermalDelay, FixedAthermalTransient)
+{
+  const double du = 0.01, inc = 0.37 * du, v = 0.1;
+  for (double eps : {0.0, 0.5}) {
+    for (double tau : {2.0, 10.0}) {
+      const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), du,
+                               delayed(0.0, tau, DelayKind::FIXED), 16);
+      ThermalSlider sl;
+      sl.Pc = make_uniform(0.75, 1.25);
+      sl.spec = delayed(0.0, tau, DelayKind::FIXED);
+      sl.v = (1.0 + eps) * v;
+      const double dx = 5e-4;
+      const MEResult ref = thermal_transient(sl, dx, (1.0 + eps) * 8.0 + 0.01, true);
+      Block b(m);
+      double eF = 0.0, ea = 0.0;
+      for (long k = 1; double(k) * inc <= 8.0; ++k) {
+        const double X = double(k) * inc;
+        b.go(X, eps, inc / v);
+        if (k % 3) continue;
+        const double f = (1.0 + eps) * X / dx;
+        const size_t i = size_t(f);
+        const double t = f - double(i);
+        eF = std::max(eF, std::fabs((1.0 + eps) * b.F() - ((1.0 - t) * ref.F[i] + t * ref.F[i + 1])));
+        ea = std::max(ea, std::fabs(m.attached(b.s.data()) -
+                                    ((1.0 - t) * ref.attached[i] + t * ref.attached[i + 1])));
+      }
+      const double eff = (1.0 + eps) * du;
+      EXPECT_LT(eF, 2.0 * eff * eff) << "eps " << eps << " tau " << tau;
+      EXPECT_LT(ea, 2.0 * eff * eff) << "eps " << eps << " tau " << tau;
+      std::printf("T=0 delay fixed %g eps %g: max |F - F_ref| %.3e (%.3f du_eff^2), n_a %.3e "
+                  "(%.3f du_eff^2)\n", tau, eps, eF, eF / (eff * eff), ea, ea / (eff * eff));
+    }
+  }
+  for (DelayKind kind : {DelayKind::EXPONENTIAL, DelayKind::FIXED}) {
+    const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), du,
+                             delayed(0.0, 1.0, kind), 16);
+    Block b(m);
+    b.go(3.0, 0.0, 0.0);
+    EXPECT_EQ(m.attached(b.s.data()), 0.0);
+    EXPECT_EQ(m.rows(b.s.data()), 0);
+    b.go(3.0, 0.0, 5.0);
+    EXPECT_EQ(m.rows(b.s.data()), 1);    // re-formed at X = 3, one anchor
+    EXPECT_NEAR(m.attached(b.s.data()), kind == DelayKind::FIXED ? 1.0 : 1.0 - std::exp(-5.0),
+                1e-14);
+    EXPECT_NEAR(m.attached(b.s.data()) + m.waiting(b.s.data()), 1.0, 1e-14);
+  }
+}
+
+// T > 0 with an exponential or a fixed delay against the slider renewal
+// equation (thermal_transient, which has its own delay treatment) and the
+// steady state quadrature (thermal_steady_state): as ConstantVelocity
+// (bounds 5 du_eff^2, second-order ratio 3 ... 5.5), F(X) and the
+// attached fraction n_a(X) over X in [0, 4]
+TEST(MesoThermalDelay, ConstantVelocity)
+{
+  struct Run {
+    double theta, v, eps, tau;
+    DelayKind kind;
+  };
+  const DelayKind E = DelayKind::EXPONENTIAL, Fx = DelayKind::FIXED;
+  for (const Run &r : {Run{0.05, 1e-2, 0.0, 30.0, E}, Run{0.05, 1e-2, 1.0, 100.0, E},
+                       Run{0.1, 1e-1, 0.0, 3.0, E}, Run{0.05, 1e-2, 0.0, 30.0, Fx},
+                       Run{0.05, 1e-2, 1.0, 100.0, Fx}, Run{0.1, 1e-1, 0.0, 3.0, Fx}}) {
+    const double du = 0.02 / (1.0 + r.eps);
+    double ac = 0.0, af = 0.0;
+    const VelocityError c =
+        error_vs_slider(delayed(r.theta, r.tau, r.kind), r.v, r.eps, du, 8, 0.5 * du, 4.0, &ac);
+    const VelocityError f =
+        error_vs_slider(delayed(r.theta, r.tau, r.kind), r.v, r.eps, 0.5 * du, 16, 0.25 * du, 4.0, &af);
+    const double ratio = c.transient / f.transient;
+    const double eff = (1.0 + r.eps) * du, fine = 0.5 * eff;
+    EXPECT_GT(ratio, 3.0) << r.theta << " " << r.v << " " << r.eps;
+    EXPECT_LT(ratio, 5.5) << r.theta << " " << r.v << " " << r.eps;
+    EXPECT_LT(c.transient, 5.0 * eff * eff) << r.theta << " " << r.v << " " << r.eps;
+    EXPECT_LT(f.transient, 5.0 * fine * fine) << r.theta << " " << r.v << " " << r.eps;
+    // n_a = 1 - (B(X) - B(X - v tau)) with a fixed delay, B the broken
+    // mass so far: the O(du^2) error of B enters at both ends (bound
+    // doubled); an exponential delay averages the second end
+    const double ca = r.kind == Fx ? 10.0 : 5.0;
+    EXPECT_LT(ac, ca * eff * eff) << r.theta << " " << r.v << " " << r.eps;
+    EXPECT_LT(af, ca * fine * fine) << r.theta << " " << r.v << " " << r.eps;
+    EXPECT_GT(ac / af, 3.0) << r.theta << " " << r.v << " " << r.eps;
+    EXPECT_LT(ac / af, 5.5) << r.theta << " " << r.v << " " << r.eps;
+    EXPECT_LT(f.steady, 5.0 * fine * fine + f.relax) << r.theta << " " << r.v << " " << r.eps;
+    std::printf("delay %s %g theta %g v %g eps %g: coarse %.3e (%.2f du_eff^2) fine %.3e (%.2f "
+                "du_eff^2) ratio %.3f n_a %.3e %.3e steady %.3e relax %.3e\n",
+                r.kind == Fx ? "fixed" : "exp", r.tau, r.theta,
+                r.v, r.eps, c.transient, c.transient / (eff * eff), f.transient,
+                f.transient / (fine * fine), ratio, ac, af, f.steady, f.relax);
+  }
+}
+
+// the breaks of an eps jump happen at the start of the call, at rest as
+// in motion: T = 0, tau = 1, the block moved to X = 0.9 in no time (0.3
+// broken, waiting), then eps 0 -> 0.2 over a call of h = 0.6 breaks 0.36
+// more at t = 0 (thresholds uniform [0.75, 1.25], all on the anchor 0:
+// exact).  delay exp: 0.66 e^{-0.6} waits at t = 0.6; delay fixed: 0.66
+// waits at t = 0.6, none at t = 1.1 (due at t = 1).  The same at rest and
+// with dX = 1e-12 (continuity)
+TEST(MesoThermalDelay, EpsJumpBreaksAtStart)
+{
+  for (DelayKind kind : {DelayKind::EXPONENTIAL, DelayKind::FIXED}) {
+    const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), 0.01,
+                             delayed(0.0, 1.0, kind), 8);
+    double w[2];
+    for (int i = 0; i < 2; ++i) {
+      const double X = 0.9 + (i ? 1e-12 : 0.0);
+      Block b(m);
+      b.go(0.9, 0.0, 0.0);
+      ASSERT_NEAR(m.waiting(b.s.data()), 0.3, 1e-14);
+      b.go(X, 0.2, 0.6);
+      w[i] = m.waiting(b.s.data());
+      const double exact = kind == DelayKind::FIXED ? 0.66 : 0.66 * std::exp(-0.6);
+      EXPECT_NEAR(w[i], exact, 1e-11) << "kind " << int(kind) << " dX " << X - 0.9;
+      b.go(X, 0.2, 0.5);
+      if (kind == DelayKind::FIXED) {
+        EXPECT_EQ(m.waiting(b.s.data()), 0.0) << "dX " << X - 0.9;
+        EXPECT_NEAR(m.attached(b.s.data()), 1.0, 1e-14);
+      } else {
+        EXPECT_NEAR(m.waiting(b.s.data()), 0.66 * std::exp(-1.1), 1e-12) << "dX " << X - 0.9;
+      }
+    }
+    EXPECT_NEAR(w[0], w[1], 1e-11) << "kind " << int(kind);
+  }
+}
+
+// a fixed delay with steps of several du (several sub-steps per call):
+// one FIFO bin per sub-step, so the error is that of steps of du (bounds
+// as ConstantVelocity at dX = du/2: 5 du^2 for F, 10 du^2 for n_a; a bin
+// per call spread over the call's window made n_a first order in the
+// step: 30 du^2 at dX = 4 du, 105 du^2 at 8 du); the exponential delay
+// likewise
+TEST(MesoThermalDelay, FixedDelayLongSteps)
+{
+  const double du = 0.01, v = 1e-2;
+  for (DelayKind kind : {DelayKind::FIXED, DelayKind::EXPONENTIAL}) {
+    for (double n : {0.5, 4.0, 8.0}) {
+      double ea = 0.0;
+      const VelocityError e =
+          error_vs_slider(delayed(0.05, 30.0, kind), v, 0.0, du, 16, n * du, 4.0, &ea);
+      std::printf("delay %s 30 dX = %g du: max |F - F_ref| %.3e (%.2f du^2), n_a %.3e (%.2f "
+                  "du^2)\n", kind == DelayKind::FIXED ? "fixed" : "exp", n, e.transient,
+                  e.transient / (du * du), ea, ea / (du * du));
+      EXPECT_LT(e.transient, 5.0 * du * du) << "dX " << n << " du";
+      EXPECT_LT(ea, 10.0 * du * du) << "dX " << n << " du";
+    }
+  }
+}
+
+// a fixed delay holds one bin per sub-step in flight: a block moving
+// 4 du per step (back and forth, contacts breaking thermally in every
+// sub-step) overflows with tau = 300 steps (1200 sub-steps), naming the
+// cause
+TEST(MesoThermalDelay, FixedDelayCapacitySubsteps)
+{
+  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), 0.01,
+                           delayed(0.05, 300.0, DelayKind::FIXED), 8);
+  Block b(m);
+  b.go(0.3, 0.0, 0.0);
+  try {
+    for (int k = 1; k <= 400; ++k) b.go(k % 2 ? 0.34 : 0.3, 0.0, 1.0);
+    FAIL() << "no overflow";
+  } catch (const std::runtime_error &e) {
+    EXPECT_THAT(e.what(), HasSubstr("delay fixed: tau = 300"));
+    EXPECT_THAT(e.what(), HasSubstr("this step moved it 4 du in sub-steps of time 0.25, tau = 1200 of them"));
+  }
+}
+
+TEST(MesoThermalDelay, Unsupported)
+{
+  auto make = [](DistributionPtr R, ThermalSpec s) {
+    ThermalMesoModel m(make_uniform(0.75, 1.25), std::move(R), 0.01, s);
+  };
+  auto message = [&](DistributionPtr R, ThermalSpec s) -> std::string {
+    try {
+      make(std::move(R), s);
+    } catch (const SpecError &e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_THAT(message(nullptr, delayed(0.05, 1.0, DelayKind::FIXED)), HasSubstr("reform none"));
+  EXPECT_THAT(message(nullptr, delayed(0.05, 1.0)), HasSubstr("reform none"));
+  EXPECT_THAT(message(make_delta(0.0), delayed(0.05, -1.0)), HasSubstr("tau must be"));
+  ThermalSpec aging = delayed(0.05, 1.0);
+  aging.aging = AgingLaw::EXP;
+  aging.beta = 0.1;
+  EXPECT_THAT(message(make_delta(0.0), aging), HasSubstr("aging: not supported"));
+  ThermalSpec rest = thermal(0.05);
+  rest.rest = 10.0;
+  EXPECT_THAT(message(make_delta(0.0), rest), HasSubstr("rest: not supported"));
 }

@@ -1,4 +1,4 @@
-"""fix eq/meso at T > 0 (keywords thermal, barrier, labels; lib
+"""fix eq/meso at T > 0 (keywords thermal, barrier, labels, delay; lib
 eq_meso_thermal) and the screening length lambda_s(v, T) (spec
 shared/notes/thermal-aging.md (e), check (f) 8), against independent
 references:
@@ -11,6 +11,9 @@ references:
   solution (eqtools.thermal_screening.chain_lattice, Gamma(eps) =
   r((1 + eps) v)/v), and apart from the seed formula lambda_c (eps0/2)^1/2
   where the two differ;
+- with delay exp or fixed tau: F(X) and the attached fraction against eq-me with
+  the same delay, the end against the steady state of
+  tools/eqtools/thermal.py; 1, 2 ranks and a restart bit for bit;
 - 1, 2, 4 ranks and a restart: the same blocks to the last bit;
 - errors of the keywords.
 """
@@ -22,6 +25,7 @@ import numpy as np
 import pytest
 
 import eqtools
+from eqtools import thermal
 from eqtools import thermal_screening as ts
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -97,6 +101,92 @@ def test_block_at_constant_velocity_follows_the_slider_master_equation(tmp_path,
     assert err < 5.0 * du * du, err
     relax = abs(np.interp(X[-1], ref[:, 0], ref[:, 1]) - me["kinetic_force"])
     assert abs(F[-1] - me["kinetic_force"]) < 5.0 * du * du + relax
+
+
+# ---------------------------------------------------------- delay exp
+DELAYED = BLOCK.replace("labels {labels}\n", "labels {labels} delay {kind} {tau!r}\n").replace(
+    "thermo_style custom step f_m[4] f_m[1]",
+    "compute na all reduce sum f_m[6]\nthermo_style custom step f_m[4] f_m[1] c_na")
+
+
+@pytest.mark.parametrize("kind,tau", [("exp", 30.0), ("exp", 100.0), ("fixed", 30.0)])
+def test_block_with_delay_follows_the_slider_master_equation(tmp_path, kind, tau):
+    """delay exp or fixed tau (v tau = 0.3, 1): one unscreened block moved
+    at v = 1e-2, theta = 0.05, steps dX = du/2: F(X)/(N k_c) and the
+    attached fraction against eq-me with the same delay (the renewal
+    solver, Richardson) at every 10th step, X up to 4 x_c.  Bound 5 du^2
+    as the run without delay (gtest MesoThermalDelay.ConstantVelocity
+    measured 2.8-3.4 du_eff^2 for F, 3.4-4.1 du_eff^2 for the attached
+    fraction with delay exp, converging at second order); with delay
+    fixed the attached fraction 1 - (B(X) - B(X - v tau)), B the broken
+    mass, carries the error of B at both ends: bound 10 du^2 (measured
+    6.5 du_eff^2).  The last F
+    and attached fraction against the steady state of the independent
+    quadrature tools/eqtools/thermal.py (F_k = int x S/(<L> + v tau), n_a
+    = <L>/(<L> + v tau)) within that bound plus what the exact F(X) still
+    lacks of it at X = 4; eq-me's steady state is the same to 1e-10."""
+    T, v, du, labels = 0.05, 1e-2, 0.01, 16
+    dX = 0.5 * du
+    nsteps = 800
+    inp = tmp_path / "in.block"
+    inp.write_text(DELAYED.format(du=du, T=T, labels=labels, kind=kind, tau=tau, v=v, dt=dX / v,
+                                  every=10, nsteps=nsteps))
+    log = eqtools.run_lammps(inp, {}, cwd=tmp_path)
+    assert "delay " + kind in log
+    rows = thermo_rows(log)
+    X, F, na = rows[:, 1], rows[:, 2] / 100.0, rows[:, 3]
+    me = eqtools.run_eqme(["threshold", "uniform", "0.75", "1.25", "reform", "delta", "0.0",
+                           "thermal", T, 1.0, 1.0, "delay", kind, tau, "velocity", v,
+                           "dx", 5e-4, "xmax", 4.1, "force", "me.dat"], cwd=tmp_path)
+    ref = eqtools.load(tmp_path / "me.dat")    # X F sd Gamma attached skewness
+    assert abs(X[-1] - nsteps * dX) < 1e-9 and F.max() > 0.4
+    tol = 5.0 * du * du
+    tola = (10.0 if kind == "fixed" else 5.0) * du * du
+    assert np.abs(F - np.interp(X, ref[:, 0], ref[:, 1])).max() < tol
+    assert np.abs(na - np.interp(X, ref[:, 0], ref[:, 4])).max() < tola
+    steady = thermal.steady_force(v, theta=T, delay=kind, tau=tau, full=True)
+    assert abs(steady["F"] - me["kinetic_force"]) < 1e-10
+    assert abs(steady["n_a"] - me["attached_fraction"]) < 1e-10
+    assert steady["n_a"] < 0.75    # the delay matters: a third or more waits
+    relaxF = abs(np.interp(X[-1], ref[:, 0], ref[:, 1]) - steady["F"])
+    relaxA = abs(np.interp(X[-1], ref[:, 0], ref[:, 4]) - steady["n_a"])
+    assert abs(F[-1] - steady["F"]) < tol + relaxF
+    assert abs(na[-1] - steady["n_a"]) < tola + relaxA
+
+
+@pytest.mark.parametrize("delay", ["exp 30", "fixed 30"])
+def test_delay_ranks_and_restart_identical(tmp_path, delay):
+    """The screened ring of test_ranks_and_restart_identical with delay exp
+    or fixed 30 (v tau = 0.3 x_c): 1 and 2 ranks give every block's state
+    to the last bit, a run split by write_restart/read_restart (2 -> 1
+    ranks) continues it bit for bit, and the delay changed the run."""
+    base = dict(M=12, v=1e-2, grid=0.01, dX=0.005, Xmax=1.0, labels=8, delay=delay)
+
+    def rows(d):
+        text = (d / "eps_now.dump").read_text().split("ITEM: ATOMS")[-1].splitlines()[1:]
+        return np.array([[float(x) for x in l.split()] for l in text if l.strip()])
+
+    ref = None
+    for n in (1, 2):
+        d = tmp_path / f"np{n}"
+        d.mkdir()
+        eqtools.run_lammps(SCREEN, dict(base, out=d), nprocs=n, cwd=d)
+        got = rows(d)
+        if ref is None:
+            ref = got
+        else:
+            assert np.array_equal(got, ref), n
+    d = tmp_path / "split"
+    d.mkdir()
+    eqtools.run_lammps(SCREEN, dict(base, out=d, Xmax=0.5, restartfile="half_restart"),
+                       nprocs=2, cwd=d)
+    eqtools.run_lammps(SCREEN, dict(base, out=d, Xmax=0.5, readrestart="half_restart"),
+                       nprocs=1, cwd=d)
+    assert np.array_equal(rows(d), ref)
+    d = tmp_path / "nodelay"
+    d.mkdir()
+    eqtools.run_lammps(SCREEN, dict(base, out=d, delay="none"), cwd=d)
+    assert np.abs(rows(d)[:, 2] - ref[:, 2]).max() > 1e-3    # eps: fewer contacts attached
 
 
 # ---------------------------------------------------------- screening length
@@ -186,6 +276,11 @@ FIX = "fix m all eq/meso 100 1.0 threshold uniform 0.75 1.25 "
     ("grid 0.01 labels 8", "Fix eq/meso labels: needs thermal"),
     ("grid 0.01 thermal 0.05 1.0 1.0 labels 0", "Fix eq/meso labels: expected an integer"),
     ("grid 0.01 thermal 0.05 1.0 1.0 aging log 0.1 1.0", "Fix eq/meso aging: not supported"),
+    ("grid 0.01 thermal 0.05 1.0 1.0 rest 10", "Fix eq/meso rest: not supported"),
+    ("grid 0.01 thermal 0.05 1.0 1.0 delay exp -1", "Fix eq/meso delay tau: must be >= 0"),
+    ("grid 0.01 thermal 0.05 1.0 1.0 delay fixed 10\nrun 1",
+     "Fix m eq/meso delay fixed: tau = 10 is 2000 time steps, more than the 1022"),
+    ("grid 0.01 delay exp 10", "Fix eq/meso delay: needs thermal with T > 0"),
     ("grid 0.01 thermal 0.05 1.0 1.0 reform uniform -0.1 0.1",
      "with thermal, contacts re-form unstretched"),
 ])

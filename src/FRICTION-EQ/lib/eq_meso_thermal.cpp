@@ -36,6 +36,12 @@ const double EMPTY = 1e-20;     // what is left of a (row, panel) below this bre
 const double SPLIT_SLACK = 1e-9;    // relative excess of du a sub-step may have
 
 enum Slot { TAG, XPOS, JLO, JHI, RATE, DET, MASS, STRETCH, NHEAD };
+// after the rows, with an exponential delay only: the waiting mass
+enum PoolSlot { WAIT, NPOOL };
+// after the rows, with a fixed delay only: a ring of MESO_DELAY_BINS bins
+// (start, end, mass: due uniformly over [start, end] from now), oldest
+// first from HEAD, COUNT of them in flight
+enum FifoSlot { FHEAD, FCOUNT, NFIFO };
 
 std::string fmt(double v) { return format_number(v, 6); }
 
@@ -56,10 +62,15 @@ ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, doub
   if (start == MEStart::REFORM && !R)
     throw SpecError("start: 'reform' needs a reform distribution (reform none given); allowed: "
                     "relaxed");
-  if (spec.aging != AgingLaw::NONE || (spec.delay != DelayKind::NONE && spec.tau > 0.0) ||
-      spec.rest > 0.0)
-    throw SpecError("thermal: aging, delay and rest are not supported by fix eq/meso (only "
-                    "thermal and barrier)");
+  if (spec.aging != AgingLaw::NONE)
+    throw SpecError("aging: not supported by fix eq/meso yet (thermal, barrier and delay are)");
+  if (spec.rest > 0.0)
+    throw SpecError("rest: not supported by fix eq/meso yet (it needs threshold aging)");
+  if (!(spec.tau >= 0.0) || !std::isfinite(spec.tau))
+    throw SpecError("delay: tau must be finite and >= 0 (got " + fmt(spec.tau) + ")");
+  if (spec.tau > 0.0) delay = spec.delay;
+  if (delay != DelayKind::NONE && !R)
+    throw SpecError("delay: needs re-forming contacts (reform delta 0), not reform none");
   if (!(spec.theta >= 0.0) || !(spec.omega > 0.0) || !std::isfinite(spec.omega) ||
       !(spec.xc > 0.0))
     throw SpecError("thermal: need theta >= 0, a finite omega > 0 and x_c > 0");
@@ -74,13 +85,16 @@ ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, doub
     throw GridError("grid: spacing " + fmt(du) + " is too coarse for threshold " + Pc->describe() +
                     " (sd " + fmt(sd) + "); the largest allowed value is " + fmt(dmax));
   const double rows = 2.0 * std::ceil(ytop * inv_du) + 8.0;
-  if (!(NHEAD + rows * (nl + 1) <= MESO_MAX_WIDTH))
-    throw GridError("grid: spacing " + fmt(du) + " needs about " + fmt(NHEAD + rows * (nl + 1)) +
+  const int nextra = extra_width();
+  if (!(NHEAD + rows * (nl + 1) + nextra <= MESO_MAX_WIDTH))
+    throw GridError("grid: spacing " + fmt(du) + " needs about " +
+                    fmt(NHEAD + rows * (nl + 1) + nextra) +
                     " doubles per block with " + std::to_string(nl) +
                     " threshold panels (limit " + std::to_string(MESO_MAX_WIDTH) +
                     "); use a spacing >= " + fmt(min_grid()) + " or fewer labels");
   ncap = int(rows);
-  nwidth = NHEAD + ncap * (nl + 1);
+  pool = NHEAD + ncap * (nl + 1);
+  nwidth = pool + nextra;
   if (!Pc->is_point()) {
     eps_acc = std::max(0.0, 0.25 * sd * inv_du - 1.0);
     eps_max = std::max(0.0, Pc->quantile(0.5) * inv_du - 1.0);
@@ -123,9 +137,19 @@ void ThermalMesoModel::set_panels()
   }
 }
 
+// doubles after the rows: the waiting pool or the FIFO of a fixed delay
+int ThermalMesoModel::extra_width() const
+{
+  switch (delay) {
+    case DelayKind::EXPONENTIAL: return NPOOL;
+    case DelayKind::FIXED: return NFIFO + 3 * MESO_DELAY_BINS;
+    default: return 0;
+  }
+}
+
 double ThermalMesoModel::min_grid() const
 {
-  const double room = MESO_MAX_WIDTH - NHEAD - 10.0 * (nl + 1);
+  const double room = MESO_MAX_WIDTH - NHEAD - extra_width() - 10.0 * (nl + 1);
   return room > 0.0 ? 2.0 * ytop * (nl + 1) / room : HUGE_VAL;
 }
 
@@ -180,11 +204,18 @@ double ThermalMesoModel::rate_at(double y, double inv_xm, double coef) const
 
 // one sub-step X0 -> X1 (|X1 - X0| <= du) over the time h: the thermal
 // breaks, then the threshold crossings; D, MX: broken mass and its first
-// moment of the break positions
+// moment of the break positions; DT: its first moment of the break times
+// from the sub-step's start (crossings when X passes them, those of an
+// eps jump at 0, thermal breaks at their Simpson-weighted mean time)
 void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, double h, double &D,
-                               double &MX) const
+                               double &MX, double &DT) const
 {
   const double g = 1.0 + eps, Xm = 0.5 * (X0 + X1);
+  const double dX = X1 - X0;
+  // the time at which X passes pos (at rest: the start)
+  auto when = [&](double pos) {
+    return dX == 0.0 ? 0.0 : h * std::min(1.0, std::max(0.0, (pos - X0) / dX));
+  };
   const double Xlo = std::min(X0, X1), Xhi = std::max(X0, X1);
   const bool thermal = spec.theta > 0.0 && h > 0.0;
   const long jlo = long(s[JLO]), jhi = long(s[JHI]);
@@ -192,10 +223,11 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
     double *r = row(s, j);
     const double A = double(j) * du;
     if (std::min(X0, X1) - A <= -ytop) {    // compressed beyond every threshold
-      const double pos = std::min(Xhi, std::max(Xlo, A - ytop));
+      const double pos = std::min(Xhi, std::max(Xlo, A - ytop)), tp = when(pos);
       for (int l = 0; l < nl; ++l) {
         D += r[1 + l];
         MX += r[1 + l] * pos;
+        DT += r[1 + l] * tp;
         r[1 + l] = 0.0;
       }
       continue;
@@ -223,6 +255,7 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
         r[1 + l] = b == m ? 0.0 : m - b;
         D += b;
         MX += b * ((n0 * X0 + 4.0 * nm * Xm + n1 * X1) / sum);
+        DT += b * (h * ((2.0 * nm + n1) / sum));
       }
     }
     const double ynew = g * std::max(d0, d1);
@@ -246,9 +279,110 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
       r[1 + l] = b == m ? 0.0 : m - b;
       D += b;
       MX += b * pos;
+      DT += b * (at_start ? 0.0 : when(pos));
     }
     r[0] = ynew;
   }
+}
+
+// mean of t in [0, L] under the density ~ exp(-t/tau) (the mean time at
+// which the mass re-forming within a time L does so)
+double ThermalMesoModel::mean_wait(double L) const
+{
+  const double x = L / spec.tau;
+  if (x < 1e-4) return L * (0.5 - x / 12.0);    // next term L x^3/720: below 1e-16 L
+  return spec.tau - L / std::expm1(x);
+}
+
+// exponential delay over a sub-step X0 -> X1 of time h: the waiting mass
+// re-forms at the rate 1/tau, exactly over h; the mass D broken in the
+// sub-step joins the pool at the mean time of its breaks (DT/D; crossing
+// step: at the end) and the part of it that re-forms within the
+// sub-step does so from then on.  On return D, MX are the mass re-forming
+// in the sub-step and the first moment of its positions (X at the mean
+// re-forming times: X is linear in time).
+void ThermalMesoModel::wait(double *s, double X0, double X1, double h, double &D, double &MX,
+                            double DT) const
+{
+  const double W = s[pool + WAIT], dX = X1 - X0;
+  const double tb = break_time(h, D, DT);
+  const double aW = -W * std::expm1(-h / spec.tau);
+  const double aD = -D * std::expm1(-(h - tb) / spec.tau);
+  s[pool + WAIT] = (W - aW) + (D - aD);
+  const double inv_h = h > 0.0 ? 1.0 / h : 0.0;
+  const double xW = X0 + dX * (mean_wait(h) * inv_h);
+  const double xD = X0 + dX * ((tb + mean_wait(h - tb)) * inv_h);
+  D = aW + aD;
+  MX = aW * xW + aD * xD;
+}
+
+// the mean time, from the sub-step's start, of the breaks of mass D with
+// first moment DT of their times in a sub-step of time h (crossing step:
+// at the end)
+double ThermalMesoModel::break_time(double h, double D, double DT) const
+{
+  if (crossing == Crossing::STEP) return h;
+  if (!(D > 0.0)) return 0.5 * h;
+  return std::min(h, std::max(0.0, DT / D));
+}
+
+// fixed delay over a sub-step X0 -> X1 of time h: the mass D broken in it
+// is due tau later, spread uniformly over [tau + t_b - w, tau + t_b + w]
+// (t_b = DT/D the mean time of its breaks, w = min(t_b, h - t_b): within
+// the sub-step's window shifted by tau, the mean exact); one bin per
+// sub-step (std::runtime_error when MESO_DELAY_BINS are in flight).  Each
+// bin re-forms the part of it due within the
+// sub-step, at X at the middle of that part (X linear in time); the rest
+// stays uniform over what is left of its window.  On return D, MX as
+// wait().  Bin: (start, end, mass), times from the sub-step's start.
+void ThermalMesoModel::fifo(double *s, double X0, double X1, double h, double &D, double &MX,
+                            double DT, long nsub) const
+{
+  double *q = s + pool;
+  long head = long(q[FHEAD]), count = long(q[FCOUNT]);
+  auto bin = [&](long k) { return q + NFIFO + 3 * ((head + k) % MESO_DELAY_BINS); };
+  if (D > 0.0) {
+    const double tb = break_time(h, D, DT), w = std::max(0.0, std::min(tb, h - tb));
+    if (count == MESO_DELAY_BINS)
+      throw std::runtime_error(
+          "delay fixed: tau = " + fmt(spec.tau) + " needs more than " +
+          std::to_string(MESO_DELAY_BINS) + " bins of broken contacts in flight, the most a " +
+          "block holds (one per sub-step of the grid du = " + fmt(du) + ": a step moving the "
+          "block by n > 1 du holds n; this step moved it " + std::to_string(nsub) +
+          " du in sub-steps of time " + fmt(h) + ", tau = " + fmt(spec.tau / h) +
+          " of them); the bins in flight are about max(tau/dt, |v| tau/du): use a larger "
+          "timestep or a larger grid, a shorter delay, or delay exp");
+    double *b = bin(count++);
+    b[0] = spec.tau + tb - w;
+    b[1] = spec.tau + tb + w;
+    b[2] = D;
+  }
+  const double dX = X1 - X0, inv_h = h > 0.0 ? 1.0 / h : 0.0;
+  double Dr = 0.0, MXr = 0.0;
+  for (long k = 0; k < count; ++k) {
+    double *b = bin(k);
+    if (!(b[0] < h || b[1] <= h)) break;    // the windows are in order
+    const double a = std::max(b[0], 0.0), e = b[1];
+    const bool all = e <= h;
+    const double part = all ? b[2] : b[2] * ((h - a) / (e - a));
+    const double tm = 0.5 * (a + std::min(e, h));
+    Dr += part;
+    MXr += part * (X0 + dX * (tm * inv_h));
+    b[2] = all ? 0.0 : b[2] - part;
+    b[0] = h;
+  }
+  while (count > 0 && bin(0)[2] == 0.0) {
+    head = (head + 1) % MESO_DELAY_BINS;
+    --count;
+  }
+  for (long k = 0; k < count; ++k) {
+    bin(k)[0] -= h;
+    bin(k)[1] -= h;
+  }
+  q[FHEAD] = double(head);
+  q[FCOUNT] = double(count);
+  D = Dr;
+  MX = MXr;
 }
 
 // the mass D broken in a sub-step re-forms unstretched at its mean break
@@ -266,11 +400,11 @@ void ThermalMesoModel::reform(double *s, double X0, double X1, double D, double 
   const long j = static_cast<long>(std::floor(f));
   const double t = f - double(j);
   long lo = long(s[JLO]), hi = long(s[JHI]);
-  const long want_lo = std::min(lo, j), want_hi = std::max(hi, t > 0.0 ? j + 1 : j);
-  if (lo > hi) {    // empty (cannot happen with re-forming contacts)
-    lo = want_lo;
-    hi = lo - 1;
+  if (lo > hi) {    // empty (every contact waiting in a delay): nothing to keep
+    lo = j;
+    hi = j - 1;
   }
+  const long want_lo = std::min(lo, j), want_hi = std::max(hi, t > 0.0 ? j + 1 : j);
   if (want_hi - want_lo + 1 > ncap)
     throw std::logic_error("eq/meso thermal: anchor ring overflow (" +
                            std::to_string(want_hi - want_lo + 1) + " rows > " +
@@ -348,11 +482,13 @@ double ThermalMesoModel::advance(double *s, double X1, double eps, double h) con
   double total = 0.0, xa = X0;
   for (long k = 1; k <= n; ++k) {
     const double xb = k == n ? X1 : X0 + (X1 - X0) * (double(k) / double(n));
-    double D = 0.0, MX = 0.0;
-    substep(s, xa, xb, eps, h / double(n), D, MX);
+    double D = 0.0, MX = 0.0, DT = 0.0;
+    substep(s, xa, xb, eps, h / double(n), D, MX, DT);
+    total += D;
+    if (delay == DelayKind::EXPONENTIAL) wait(s, xa, xb, h / double(n), D, MX, DT);
+    else if (delay == DelayKind::FIXED) fifo(s, xa, xb, h / double(n), D, MX, DT, n);
     reform(s, xa, xb, D, MX);
     trim(s);
-    total += D;
     xa = xb;
   }
   s[XPOS] = X1;
@@ -379,6 +515,16 @@ double ThermalMesoModel::detached(const double *s) const
 {
   return s[DET];
 }
+double ThermalMesoModel::waiting(const double *s) const
+{
+  if (delay == DelayKind::EXPONENTIAL) return s[pool + WAIT];
+  if (delay != DelayKind::FIXED) return 0.0;
+  const double *q = s + pool;
+  const long head = long(q[FHEAD]), count = long(q[FCOUNT]);
+  double w = 0.0;
+  for (long k = 0; k < count; ++k) w += q[NFIFO + 3 * ((head + k) % MESO_DELAY_BINS) + 2];
+  return w;
+}
 double ThermalMesoModel::rate(const double *s) const
 {
   return s[RATE];
@@ -396,7 +542,7 @@ double ThermalMesoModel::normalization_error(const double *s) const
     const double *r = row(s, j);
     for (int l = 0; l < nl; ++l) mass += r[1 + l];
   }
-  return std::fabs(mass + s[DET] - 1.0);
+  return std::fabs(mass + s[DET] + waiting(s) - 1.0);
 }
 
 bool ThermalMesoModel::valid(const double *s) const
@@ -406,6 +552,14 @@ bool ThermalMesoModel::valid(const double *s) const
   if (!(std::isfinite(lo) && std::isfinite(hi) && lo == std::floor(lo) && hi == std::floor(hi)))
     return false;
   if (!(std::fabs(lo) < 4e15 && hi - lo + 1.0 <= ncap && hi - lo >= -1.0)) return false;
+  if (delay == DelayKind::FIXED) {
+    const double head = s[pool + FHEAD], count = s[pool + FCOUNT];
+    if (!(head >= 0.0 && head < MESO_DELAY_BINS && head == std::floor(head) && count >= 0.0 &&
+          count <= MESO_DELAY_BINS && count == std::floor(count)))
+      return false;
+  }
+  const double w = waiting(s);
+  if (!(w >= 0.0 && w <= 1.0 + 1e-12)) return false;
   return std::isfinite(s[XPOS]) && s[DET] >= 0.0;
 }
 

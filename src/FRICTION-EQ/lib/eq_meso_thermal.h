@@ -46,7 +46,11 @@
    The two are the same at constant eps (steady sliding, the T -> 0 test)
    and differ when eps jumps.
    A broken contact re-forms at once, unstretched (R = delta(0)), or never
-   (R null, "reform none").  Other R, aging, delays and rest ages are not
+   (R null, "reform none"), or, with a formation delay (spec (b) 1),
+   waits and re-forms unstretched where the block is then, with a fresh
+   threshold: "delay exp tau" at the rate 1/tau per unit time, "delay
+   fixed tau" exactly tau after it broke.  Waiting contacts carry no
+   force (attached + waiting = 1).  Other R, aging and rest ages are not
    supported (SpecError).  Start: all contacts unstretched (relaxed; with
    R = delta(0) start reform is the same).  At constant eps this is a
    block of contacts loaded at w = (1 + eps) v: F(X) = F_1((1 + eps) X)/
@@ -76,8 +80,37 @@
        weights (mass and mean anchor exact), with fresh thresholds (P_c
        by panels).  Re-formed contacts do not break again within the
        sub-step (it moves at most du).
+     * break times: substep() also accumulates the first moment of the
+       break TIMES (from the sub-step's start): crossings when X passes
+       them (X linear in time), those of an eps jump at 0 (also at rest),
+       thermal breaks at the Simpson-weighted mean time, compressed rows
+       when X passes A - top; t_b = their mass-weighted mean (crossing
+       step: h).  Not inferred from the mean position (lost at rest, and
+       cancelling when dX is tiny); the no-delay path does not use it.
+     * delay exp tau (instead of re-forming at once): the pool W (one
+       double after the rows) loses W (1 - e^{-h/tau}) over the sub-step
+       of time h, exactly; the mass broken in the sub-step joins it at
+       the mean time of its breaks t_b and (1 - e^{-(h - t_b)/tau}) of it
+       re-forms before the
+       end.  Both parts re-form at X at their mean re-forming time
+       (truncated exponential), hat weights as above.  tau = 0 or delay
+       none: the state and the numbers are those without the keyword.
+     * delay fixed tau: a FIFO of bins (start, end, mass) after the rows,
+       one per SUB-STEP in flight (MESO_DELAY_BINS: tau may be up to
+       MESO_DELAY_BINS - 2 = 1022 sub-steps, i.e. 1022 calls where a
+       block moves du or less per call, fewer where it moves more; more is
+       a std::runtime_error naming tau, the sub-steps of the call and the
+       remedies).  The mass broken in a sub-step is due uniformly over
+       [tau + t_b - w, tau + t_b + w], w = min(t_b, h - t_b) (within the
+       sub-step's window shifted by tau, the mean re-forming time is the
+       mean break time + tau); each sub-step re-forms the part of every
+       bin due within it at X at the middle of that part.  (Re-forming a
+       bin at once at its mean time makes the attached fraction first
+       order in the step: measured 20 du^2 at v tau/dX = 270.27; so did
+       one bin per call spread over the hull of its sub-steps' windows,
+       which moves the mean: 25 du^2 at dX = 4 du, 99 du^2 at 8 du.)
    Probability is conserved by construction (broken = re-formed, or
-   detached).  Errors: O(du^2) from the anchors, O(h_l^2) from the panels
+   detached, or waiting).  Errors: O(du^2) from the anchors, O(h_l^2) from the panels
    (midpoint threshold), O(dt^2) relative hazard per step from Simpson.
    Only the rows from the lowest to the highest one holding mass are
    visited (a ring of 2 ceil(top/du) + 8 rows: no contact survives
@@ -107,6 +140,16 @@
    of the exact renewal solution (constant eps, increments 0.37 du, du =
    0.005 ... 0.02; eps = 0: 0.66 ... 0.75 du^2, eps = 0.5: 1.03 ... 1.09
    du^2), and equal to MesoModel to rounding with crossing step.
+   With a delay (tau = 3 ... 100, v tau = 0.3 ... 1; theta = 0.05, 0.1;
+   eps = 0, 1; dX = du/2): F(X) within 2.8 ... 3.4 du_eff^2 of the slider
+   master equation with the same delay, the attached fraction within
+   3.4 ... 4.1 (exp) and 6.6 (fixed) du_eff^2, converging at second order
+   (ratio 3.7 ... 4.1); with steps of 4 and 8 du (theta = 0.05, v = 1e-2,
+   tau = 30, 16 panels) F within 3.2 (fixed) and 3.4 (exp) du^2, the
+   attached fraction within 4.9 (fixed) and 4.3 (exp) du^2; at theta = 0 the steady F_k and n_a with delay exp
+   within 0.17 du_eff^2 of the closed forms <x_s^2>/(2 (<x_s> + w tau))
+   and <x_s>/(<x_s> + w tau), w = (1 + eps) v, and F(X), n_a(X) with delay
+   fixed within 1.1 du_eff^2 of the renewal solution (dX = 0.37 du).
 
    Cost: 3 exponentials per (row, panel) holding mass per sub-step; rows
    holding mass ~ top/((1 + eps) du) or fewer (thermal breaking empties
@@ -185,12 +228,16 @@ class AthermalBlocks : public BlockModel {
 
 // default number of threshold label panels (fix eq/meso keyword 'labels')
 constexpr int MESO_THERMAL_LABELS = 32;
+// bins of the FIFO of a fixed delay (one per advance() call in flight:
+// tau may be up to MESO_DELAY_BINS - 2 time steps)
+constexpr int MESO_DELAY_BINS = 1024;
 
 class ThermalMesoModel : public BlockModel {
  public:
   // Pc: thresholds; R: delta(0) or nullptr (reform none), anything else a
   // SpecError; du: anchor grid; nlabels: threshold panels (1 for a point
-  // P_c); spec: theta >= 0, omega, p, q, xc (aging, delay, rest: SpecError).
+  // P_c); spec: theta >= 0, omega, p, q, xc, delay exp or fixed tau (aging,
+  // rest: SpecError; a delay needs R).
   // GridError for a grid too coarse for P_c (as MesoModel) or too fine
   // (width() > MESO_MAX_WIDTH).
   ThermalMesoModel(DistributionPtr Pc, DistributionPtr R, double du, const ThermalSpec &spec,
@@ -205,6 +252,7 @@ class ThermalMesoModel : public BlockModel {
   double mean_stretch(const double *state) const override;    // at the stored X
   double attached(const double *state) const override;
   double detached(const double *state) const;
+  double waiting(const double *state) const;    // broken, re-forming after the delay
   double rate(const double *state) const;    // broken / |dX| of the last call (0: dX = 0)
   double normalization_error(const double *state) const override;
   bool valid(const double *state) const override;
@@ -232,13 +280,22 @@ class ThermalMesoModel : public BlockModel {
   double ytop = 0.0;
   double eps_acc = HUGE_VAL, eps_max = HUGE_VAL;
   int ncap = 0, nwidth = 0;
+  DelayKind delay = DelayKind::NONE;    // NONE also for tau = 0
+  int pool = 0;    // offset of the waiting pool or FIFO in the state (after the rows)
   double tag = 0.0;
 
   void set_panels();
   double *row(double *s, long j) const;
   const double *row(const double *s, long j) const;
   double rate_at(double y, double inv_xm, double coef) const;
-  void substep(double *s, double X0, double X1, double eps, double h, double &D, double &MX) const;
+  void substep(double *s, double X0, double X1, double eps, double h, double &D, double &MX,
+               double &DT) const;
+  int extra_width() const;
+  double mean_wait(double L) const;
+  double break_time(double h, double D, double DT) const;
+  void fifo(double *s, double X0, double X1, double h, double &D, double &MX, double DT,
+            long nsub) const;
+  void wait(double *s, double X0, double X1, double h, double &D, double &MX, double DT) const;
   void reform(double *s, double X0, double X1, double D, double MX) const;
   void trim(double *s) const;
   void totals(double *s) const;
