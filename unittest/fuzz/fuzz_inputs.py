@@ -848,6 +848,21 @@ def gen_meso(b):
         done |= {("", "Nlambda"), ("", "kc")}
         done |= {(g, "style") for g in ("threshold", "reform")}
         done |= {(g, it.name) for g, its in extras0 for it in its if isinstance(it, P)}
+    # temperature and the formation delay: every value of the thermal
+    # kernel's keywords (the distributions are fixed: the kernel takes
+    # uniform thresholds re-forming at 0 here)
+    thermal = [("threshold", ["uniform", "0.75", "1.25"]), ("grid", ["0.02"]),
+               ("thermal", [P("T", "0.05"), P("eps_a", "1.0"), P("omega", "1.0")]),
+               ("barrier", [P("p", "2.0", valid=("zero",)), P("q", "0.25", valid=("zero",))]),
+               ("labels", [P("n", "8", "int")]),
+               ("delay", [style_word("delay", "exp", ("none", "fixed", "exp")),
+                          P("tau", "5.0", valid=("zero",))])]
+    cmd = Cmd("meso", r"eq/meso", ["fix", "m", "all", "eq/meso"], [P("Nlambda", "100"), P("kc", "1.0")],
+              thermal)
+    b.add("meso.control-thermal", "control", fill(BASE_MESO, meso=cmd.line()), Expect("ok"), GOOD_FILES)
+    for suffix, cls, line, kw, p, val in mutate_cmd(cmd, done):
+        ocls, exp = mutation_expect(cmd, cls, kw, p, val)
+        b.add(f"meso.thermal-{suffix}", ocls, fill(BASE_MESO, meso=line), exp, GOOD_FILES)
     good = "fix m all eq/meso 100 1.0 threshold uniform 0.75 1.25"
     for bad in ("thresholds", "grids", "screening", "windows", "checks", "drives", "avalanches",
                 "stiffness"):
