@@ -392,7 +392,8 @@ void FixEQMeso::init()
    a fixed delay is held in one bin per sub-step in flight (a step of the
    fix, or of its r-RESPA level, moving a block by du or less is one):
    tau must be at most MESO_DELAY_BINS - 2 such steps; checked at init()
-   and when fix dt/reset changes the timestep (reset_dt())
+   and when fix dt/reset changes the timestep within a run (reset_dt();
+   the timestep command between runs calls it too: the next init() checks)
 ------------------------------------------------------------------------- */
 
 void FixEQMeso::check_fixed_delay(const char *when)
@@ -414,7 +415,8 @@ void FixEQMeso::check_fixed_delay(const char *when)
 
 void FixEQMeso::reset_dt()
 {
-  check_fixed_delay(" after fix dt/reset changed the timestep");
+  if (update->whichflag == 0) return;    // between runs: the next init() checks
+  check_fixed_delay(" after the timestep changed within the run (fix dt/reset)");
 }
 
 void FixEQMeso::init_list(int /*id*/, NeighList *ptr)

@@ -262,13 +262,29 @@ TEST_F(EQMesoErrors, Thermal)
   });
   // fix dt/reset changes the timestep without init(): checked in reset_dt()
   // (tau = 5: 1000 steps of 0.005, 50000 of 1e-4)
-  TEST_FAILURE(".*ERROR: Fix m eq/meso delay fixed: tau = 5 is 50000 time steps after fix "
-               "dt/reset changed the timestep, more than the 1022 a block holds in flight.*",
+  TEST_FAILURE(".*ERROR: Fix m eq/meso delay fixed: tau = 5 is 50000 time steps after the "
+               "timestep changed within the run \\(fix dt/reset\\), more than the 1022 a block "
+               "holds in flight.*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 5.0");
                command("fix dtr all dt/reset 1 NULL 1e-4 0.01 units box");
                command("run 2 post no"););
   HIDE_OUTPUT([&] {
     command("unfix dtr");
+    command("unfix m");
+    command("timestep 0.005");
+    // the timestep command between runs (it calls reset_dt() too): no
+    // error while the script may still change the fix ...
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 5.0");
+    command("timestep 1e-4");
+    command("unfix m");
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 5.0");
+    command("timestep 1e-4");
+  });
+  // ... and the next run's init() checks
+  TEST_FAILURE(".*ERROR: Fix m eq/meso delay fixed: tau = 5 is 50000 time steps, more than the "
+               "1022 a block holds in flight.*",
+               command("run 0 post no"););
+  HIDE_OUTPUT([&] {
     command("unfix m");
     command("timestep 0.005");
   });
