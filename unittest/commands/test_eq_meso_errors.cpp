@@ -317,32 +317,26 @@ TEST_F(EQMesoErrors, Thermal)
 
 TEST_F(EQMesoErrors, ThermalRestartOfTheOtherKind)
 {
-  HIDE_OUTPUT([&] {
-    fix(std::string("100 1.0 ") + T + " grid 0.02");
-    command("run 0 post no");
-    command("write_restart eq_meso_kind.restart");
-    command("clear");
-    command("read_restart eq_meso_kind.restart");
-  });
+  const std::string file = "eq_meso_kind.restart";
+  // blocks of fix m with these keywords written after run 0, then read
+  // back into a cleared LAMMPS (the box of InitSystem())
+  auto written_with = [&](const std::string &keywords, bool fresh_box) {
+    if (fresh_box) {
+      HIDE_OUTPUT([&] { command("clear"); });
+      InitSystem();    // (hides its own output)
+    }
+    HIDE_OUTPUT([&] {
+      fix(std::string("100 1.0 ") + T + " grid 0.02" + keywords);
+      command("run 0 post no");
+      command("write_restart " + file);
+      command("clear");
+      command("read_restart " + file);
+    });
+  };
+  written_with("", false);
   TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: the restart file's blocks were made athermal.*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0"););
-  HIDE_OUTPUT([&] {
-    command("clear");
-    command("units lj");
-    command("dimension 2");
-    command("atom_style atomic");
-    command("lattice sq 1.0");
-    command("region box block 0 6 0 3 -0.5 0.5");
-    command("create_box 1 box");
-    command("create_atoms 1 box");
-    command("mass 1 1.0");
-    command("comm_modify cutoff 2.0");
-    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0");
-    command("run 0 post no");
-    command("write_restart eq_meso_kind.restart");
-    command("clear");
-    command("read_restart eq_meso_kind.restart");
-  });
+  written_with(" thermal 0.05 1.0 1.0", true);
   TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: the restart file's blocks were made at T > 0 "
                "\\(keyword thermal\\).*",
                fix(std::string("100 1.0 ") + T + " grid 0.02"););
@@ -351,28 +345,12 @@ TEST_F(EQMesoErrors, ThermalRestartOfTheOtherKind)
   for (const char *pair : {"|delay exp 10", "delay exp 10|"}) {
     const std::string spec(pair), w = spec.substr(0, spec.find('|')),
                                   r = spec.substr(spec.find('|') + 1);
-    HIDE_OUTPUT([&] {
-      command("clear");
-      command("units lj");
-      command("dimension 2");
-      command("atom_style atomic");
-      command("lattice sq 1.0");
-      command("region box block 0 6 0 3 -0.5 0.5");
-      command("create_box 1 box");
-      command("create_atoms 1 box");
-      command("mass 1 1.0");
-      command("comm_modify cutoff 2.0");
-      fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 " + w);
-      command("run 0 post no");
-      command("write_restart eq_meso_kind.restart");
-      command("clear");
-      command("read_restart eq_meso_kind.restart");
-    });
+    written_with(" thermal 0.05 1.0 1.0 " + w, true);
     TEST_FAILURE(".*ERROR: Fix m eq/meso: thermal differs from that of the run that wrote the "
                  "restart file.*",
                  fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 " + r););
   }
-  std::remove("eq_meso_kind.restart");
+  std::remove(file.c_str());
 }
 
 TEST_F(EQMesoErrors, FixModify)
