@@ -154,41 +154,6 @@ def test_block_with_delay_follows_the_slider_master_equation(tmp_path, kind, tau
     assert abs(na[-1] - steady["n_a"]) < tola + relaxA
 
 
-@pytest.mark.parametrize("delay", ["exp 30", "fixed 30"])
-def test_delay_ranks_and_restart_identical(tmp_path, delay):
-    """The screened ring of test_ranks_and_restart_identical with delay exp
-    or fixed 30 (v tau = 0.3 x_c): 1 and 2 ranks give every block's state
-    to the last bit, a run split by write_restart/read_restart (2 -> 1
-    ranks) continues it bit for bit, and the delay changed the run."""
-    base = dict(M=12, v=1e-2, grid=0.01, dX=0.005, Xmax=1.0, labels=8, delay=delay)
-
-    def rows(d):
-        text = (d / "eps_now.dump").read_text().split("ITEM: ATOMS")[-1].splitlines()[1:]
-        return np.array([[float(x) for x in l.split()] for l in text if l.strip()])
-
-    ref = None
-    for n in (1, 2):
-        d = tmp_path / f"np{n}"
-        d.mkdir()
-        eqtools.run_lammps(SCREEN, dict(base, out=d), nprocs=n, cwd=d)
-        got = rows(d)
-        if ref is None:
-            ref = got
-        else:
-            assert np.array_equal(got, ref), n
-    d = tmp_path / "split"
-    d.mkdir()
-    eqtools.run_lammps(SCREEN, dict(base, out=d, Xmax=0.5, restartfile="half_restart"),
-                       nprocs=2, cwd=d)
-    eqtools.run_lammps(SCREEN, dict(base, out=d, Xmax=0.5, readrestart="half_restart"),
-                       nprocs=1, cwd=d)
-    assert np.array_equal(rows(d), ref)
-    d = tmp_path / "nodelay"
-    d.mkdir()
-    eqtools.run_lammps(SCREEN, dict(base, out=d, delay="none"), cwd=d)
-    assert np.abs(rows(d)[:, 2] - ref[:, 2]).max() > 1e-3    # eps: fewer contacts attached
-
-
 # ---------------------------------------------------------- screening length
 # measured: at cells = 4 (du = sd/(4 (1 + eps0))) and dX = du/2 the fitted
 # length is 0.3-0.4 % below the lattice's; with dX = du 1.3 %: the step and
@@ -225,35 +190,45 @@ def test_screening_length_follows_the_lattice_not_the_seed(tmp_path, v):
 
 
 # ---------------------------------------------------------- ranks, restart
-def test_ranks_and_restart_identical(tmp_path):
+def ring_blocks(d):
+    """Every block's row of the screened ring's last dump."""
+    text = (d / "eps_now.dump").read_text().split("ITEM: ATOMS")[-1].splitlines()[1:]
+    return np.array([[float(x) for x in l.split()] for l in text if l.strip()])
+
+
+@pytest.mark.parametrize("delay,ranks", [("none", (1, 2, 4)), ("exp 30", (1, 2)),
+                                         ("fixed 30", (1, 2))])
+def test_ranks_and_restart_identical(tmp_path, delay, ranks):
     """A ring of 12 blocks at T > 0 with screening (partners summed in the
-    order of their atom IDs): 1, 2, 4 ranks give every block's state to the
-    last bit, and a run split by write_restart/read_restart (2 -> 4 ranks)
-    continues it bit for bit."""
-    base = dict(M=12, v=1e-2, grid=0.01, dX=0.005, Xmax=1.0, labels=8)
-
-    def rows(d):
-        text = (d / "eps_now.dump").read_text().split("ITEM: ATOMS")[-1].splitlines()[1:]
-        return np.array([[float(x) for x in l.split()] for l in text if l.strip()])
-
+    order of their atom IDs), without and with a formation delay (exp or
+    fixed 30: v tau = 0.3 x_c): 1, 2 (and 4) ranks give every block's state
+    to the last bit, a run split by write_restart/read_restart (2 -> the
+    last rank count) continues it bit for bit, and the delay changes the
+    run."""
+    base = dict(M=12, v=1e-2, grid=0.01, dX=0.005, Xmax=1.0, labels=8, delay=delay)
     ref = None
-    for n in (1, 2, 4):
+    for n in ranks:
         d = tmp_path / f"np{n}"
         d.mkdir()
         eqtools.run_lammps(SCREEN, dict(base, out=d), nprocs=n, cwd=d)
-        got = rows(d)
+        got = ring_blocks(d)
         if ref is None:
             ref = got
         else:
             assert np.array_equal(got, ref), n
-    assert ref[:, 2].max() > 0.3    # screened (eps0 = 2.4 when steady)
+    assert ref[:, 2].max() > 0.3    # screened (eps0 = 2.4 when steady, without delay)
     d = tmp_path / "split"
     d.mkdir()
     eqtools.run_lammps(SCREEN, dict(base, out=d, Xmax=0.5, restartfile="half_restart"),
                        nprocs=2, cwd=d)
     eqtools.run_lammps(SCREEN, dict(base, out=d, Xmax=0.5, readrestart="half_restart"),
-                       nprocs=4, cwd=d)
-    assert np.array_equal(rows(d), ref)
+                       nprocs=ranks[-1], cwd=d)
+    assert np.array_equal(ring_blocks(d), ref)
+    if delay != "none":
+        d = tmp_path / "nodelay"
+        d.mkdir()
+        eqtools.run_lammps(SCREEN, dict(base, out=d, delay="none"), cwd=d)
+        assert np.abs(ring_blocks(d)[:, 2] - ref[:, 2]).max() > 1e-3    # eps: fewer attached
 
 
 # ---------------------------------------------------------- errors
