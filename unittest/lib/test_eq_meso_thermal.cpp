@@ -782,3 +782,30 @@ TEST(MesoThermalDelay, Unsupported)
   rest.rest = 10.0;
   EXPECT_THAT(message(make_delta(0.0), rest), HasSubstr("rest: not supported"));
 }
+
+// a fixed delay's state (migrated, read from a restart) with a bin in
+// flight whose window is not finite or whose mass is negative is not
+// valid: such a bin would hold its mass for ever or hide it in the sum
+TEST(MesoThermalDelay, ValidRejectsCorruptBins)
+{
+  const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), 0.01,
+                           delayed(0.05, 5.0, DelayKind::FIXED), 16);
+  Block b(m);
+  double X = 0.0;
+  for (int k = 0; k < 240; ++k) b.go(X += 0.005, 0.0, 0.5);
+  ASSERT_TRUE(m.valid(b.s.data()));
+  // the FIFO (head, count, then 3 numbers per bin) closes the state
+  const std::size_t fifo = m.width() - (2 + 3 * MESO_DELAY_BINS);
+  const long head = long(b.s[fifo]), count = long(b.s[fifo + 1]);
+  ASSERT_GT(count, 1);
+  double *last = &b.s[fifo + 2 + 3 * ((head + count - 1) % MESO_DELAY_BINS)];
+  ASSERT_GT(last[2], 0.0);
+  for (int slot : {0, 1}) {
+    Block c = b;
+    (&c.s[0])[&last[slot] - b.s.data()] = NAN;
+    EXPECT_FALSE(m.valid(c.s.data())) << slot;
+  }
+  Block c = b;
+  (&c.s[0])[&last[2] - b.s.data()] = -0.1;
+  EXPECT_FALSE(m.valid(c.s.data()));
+}

@@ -557,6 +557,13 @@ bool ThermalMesoModel::valid(const double *s) const
     if (!(head >= 0.0 && head < MESO_DELAY_BINS && head == std::floor(head) && count >= 0.0 &&
           count <= MESO_DELAY_BINS && count == std::floor(count)))
       return false;
+    // each bin in flight: a finite window and a mass in [0, 1] (a NaN
+    // window would hold its mass for ever)
+    for (long k = 0; k < long(count); ++k) {
+      const double *b = s + pool + NFIFO + 3 * ((long(head) + k) % MESO_DELAY_BINS);
+      if (!(std::isfinite(b[0]) && std::isfinite(b[1]) && b[2] >= 0.0 && b[2] <= 1.0 + 1e-12))
+        return false;
+    }
   }
   const double w = waiting(s);
   if (!(w >= 0.0 && w <= 1.0 + 1e-12)) return false;
