@@ -67,7 +67,7 @@ using namespace FixConst;
 namespace {
 const char *KEYWORDS =
     "threshold, reform, grid, dir, crossing, start, drive, stage, screen, window, check, thermal, "
-    "barrier, labels, delay";
+    "barrier, labels, delay, aging, rest";
 // global vector: sum F, <Gamma>, <eps>, <X>, sum drive force, N, X_s,
 // normalization error of the last check, largest Pi0
 enum { V_FORCE, V_RATE, V_EPS, V_DISP, V_FDRIVE, V_COUNT, V_STAGE, V_NORM, V_PI0, NVEC };
@@ -87,7 +87,8 @@ struct FixEQMeso::Args {
   feq::Crossing crossing = feq::Crossing::EXACT;
   feq::MEStart start = feq::MEStart::RELAXED;
   feq::ThermalKeywords thermal;
-  bool have_thermal = false, have_barrier = false, have_delay = false;
+  bool have_thermal = false, have_barrier = false, have_delay = false,
+       have_aging = false, have_rest = false;
   int labels = 0;    // 0: not given
 };
 
@@ -206,13 +207,12 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
             : feq::MEStart::REFORM;
       } else if (kw == "screen") {
         parse_screen(args, iarg);
-      } else if (kw == "aging" || kw == "rest") {
-        throw feq::SpecError(kw + ": not supported by fix eq/meso yet (its contacts do not age); "
-                                  "allowed at T > 0: thermal, barrier, labels, delay");
       } else if (feq::parse_thermal_keyword(kw, args, iarg, number, a.thermal)) {
         if (kw == "thermal") a.have_thermal = true;
         else if (kw == "barrier") a.have_barrier = true;
-        else a.have_delay = true;
+        else if (kw == "delay") a.have_delay = true;
+        else if (kw == "aging") a.have_aging = true;
+        else a.have_rest = true;
       } else if (kw == "labels") {
         if (iarg >= args.size()) throw feq::SpecError("labels: missing value (threshold panels)");
         const std::string &tok = args[iarg++];
@@ -251,6 +251,12 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
   if (a.have_delay && !thermal_flag && ts.delay != feq::DelayKind::NONE && ts.tau > 0.0)
     error->all(FLERR, "Fix eq/meso delay: needs thermal with T > 0 (the delay pool is kept by "
                       "the thermal kernel; at T = 0 use a tiny T)");
+  if (a.have_aging && !thermal_flag && ts.aging != feq::AgingLaw::NONE)
+    error->all(FLERR, "Fix eq/meso aging: needs thermal with T > 0 (the contacts' ages are kept "
+                      "by the thermal kernel; at T = 0 use a tiny T)");
+  if (a.have_rest && !thermal_flag && ts.rest > 0.0)
+    error->all(FLERR, "Fix eq/meso rest: needs thermal with T > 0 (the contacts' ages are kept "
+                      "by the thermal kernel; at T = 0 use a tiny T)");
   if (a.labels && !thermal_flag)
     error->all(FLERR, "Fix eq/meso labels: needs thermal with T > 0 (the threshold panels of the "
                       "thermal kernel)");
@@ -280,6 +286,16 @@ static std::string delay_record(const feq::ThermalSpec &spec)
   if (spec.delay == feq::DelayKind::NONE || !(spec.tau > 0.0)) return "";
   return fmt::format("|delay {} {:.17g}", spec.delay == feq::DelayKind::FIXED ? "fixed" : "exp",
                      spec.tau);
+}
+
+// the threshold aging in the restart signature: "" without it (the
+// records of runs without it are as before).  The rest age is not in it:
+// it only sets up blocks the fix defines, restored blocks keep their ages
+static std::string aging_record(const feq::ThermalSpec &spec)
+{
+  if (spec.aging == feq::AgingLaw::NONE || !(spec.beta > 0.0)) return "";
+  return fmt::format("|aging {} {:.17g} {:.17g}", spec.aging == feq::AgingLaw::LOG ? "log" : "exp",
+                     spec.beta, spec.tau_a);
 }
 
 // the blocks' master equation on its grid (default: 1/8 of the
@@ -322,8 +338,9 @@ void FixEQMeso::make_model(Args &a)
   shaping.add("dir", std::string(1, "xyz"[idir]));
   // at T > 0 only (athermal restart records are as before)
   if (thermal_flag)
-    shaping.add("thermal", fmt::format("{:.17g}|{:.17g}|{:.17g}|{:.17g}|{}{}", spec.theta,
-                                       spec.omega, spec.p, spec.q, labels, delay_record(spec)));
+    shaping.add("thermal", fmt::format("{:.17g}|{:.17g}|{:.17g}|{:.17g}|{}{}{}", spec.theta,
+                                       spec.omega, spec.p, spec.q, labels, delay_record(spec),
+                                       aging_record(spec)));
 }
 
 // what the arguments must satisfy together; returns the number of blocks

@@ -231,7 +231,7 @@ TEST_F(EQMesoErrors, Thermal)
                fix(std::string("100 1.0 ") + T + " barrier 1 0"););
   TEST_FAILURE(".*ERROR: Fix eq/meso labels: expected an integer from 1 to 4096.*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 labels 2.5"););
-  // delay exp (lib: a waiting pool), delay fixed (a FIFO); aging and rest are not supported yet
+  // delay exp (lib: a waiting pool), delay fixed (a FIFO)
   // delay fixed: at most MESO_DELAY_BINS - 2 = 1022 steps in flight (timestep 0.005 here)
   HIDE_OUTPUT([&] {
     fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay fixed 5.11");
@@ -302,10 +302,19 @@ TEST_F(EQMesoErrors, Thermal)
                "reform none.*",
                fix(std::string("100 1.0 ") + T + " reform none grid 0.02 thermal 0.05 1.0 1.0 "
                    "delay exp 1"););
-  TEST_FAILURE(".*ERROR: Fix eq/meso aging: not supported by fix eq/meso yet.*",
-               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 aging log 0.1 1"););
-  TEST_FAILURE(".*ERROR: Fix eq/meso rest: not supported by fix eq/meso yet.*",
-               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 rest 10"););
+  // aging and rest at T > 0 (the thermal kernel keeps the ages)
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 aging exp 0.2 5 rest 10 "
+        "delay exp 3");
+    command("run 0 post no");
+    command("unfix m");
+  });
+  TEST_FAILURE(".*ERROR: Fix eq/meso aging: needs thermal with T > 0.*",
+               fix(std::string("100 1.0 ") + T + " aging log 0.1 1"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso rest: needs thermal with T > 0.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.0 1.0 1.0 rest 10"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso aging tau_a: must be > 0 \\(got 0\\).*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 aging log 0.1 0"););
   TEST_FAILURE(".*ERROR: Fix eq/meso reform gaussian 0.05 0.1: with thermal, contacts re-form "
                "unstretched \\(reform delta 0\\) or never \\(reform none\\).*",
                fix(std::string("100 1.0 ") + T +
@@ -340,9 +349,11 @@ TEST_F(EQMesoErrors, ThermalRestartOfTheOtherKind)
   TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: the restart file's blocks were made at T > 0 "
                "\\(keyword thermal\\).*",
                fix(std::string("100 1.0 ") + T + " grid 0.02"););
-  // blocks written without a delay read with one (and the reverse): the
-  // signature's keyword thermal carries the delay
-  for (const char *pair : {"|delay exp 10", "delay exp 10|"}) {
+  // blocks written without a delay read with one (and the reverse), with
+  // another aging law or without aging: the signature's keyword thermal
+  // carries the delay and the aging
+  for (const char *pair : {"|delay exp 10", "delay exp 10|", "aging log 0.1 1|aging exp 0.1 1",
+                           "aging log 0.1 1|aging log 0.1 2", "|aging log 0.1 1"}) {
     const std::string spec(pair), w = spec.substr(0, spec.find('|')),
                                   r = spec.substr(spec.find('|') + 1);
     written_with(" thermal 0.05 1.0 1.0 " + w, true);
@@ -350,6 +361,13 @@ TEST_F(EQMesoErrors, ThermalRestartOfTheOtherKind)
                  "restart file.*",
                  fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 " + r););
   }
+  // the rest age sets up the blocks the fix defines; restored blocks keep
+  // their ages, so another rest is not a conflict
+  written_with(" thermal 0.05 1.0 1.0 aging log 0.1 1 rest 10", true);
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 aging log 0.1 1 rest 20");
+    command("run 0 post no");
+  });
   std::remove(file.c_str());
 }
 

@@ -848,7 +848,7 @@ def gen_meso(b):
         done |= {("", "Nlambda"), ("", "kc")}
         done |= {(g, "style") for g in ("threshold", "reform")}
         done |= {(g, it.name) for g, its in extras0 for it in its if isinstance(it, P)}
-    # temperature and the formation delay: every value of the thermal
+    # temperature, the formation delay and aging: every value of the thermal
     # kernel's keywords (the distributions are fixed: the kernel takes
     # uniform thresholds re-forming at 0 here)
     thermal = [("threshold", ["uniform", "0.75", "1.25"]), ("grid", ["0.02"]),
@@ -856,7 +856,10 @@ def gen_meso(b):
                ("barrier", [P("p", "2.0", valid=("zero",)), P("q", "0.25", valid=("zero",))]),
                ("labels", [P("n", "8", "int")]),
                ("delay", [style_word("delay", "exp", ("none", "fixed", "exp")),
-                          P("tau", "5.0", valid=("zero",))])]
+                          P("tau", "5.0", valid=("zero",))]),
+               ("aging", [style_word("aging", "log", ("none", "log", "exp")),
+                          P("beta", "0.05", valid=("zero",)), P("tau_a", "1.0")]),
+               ("rest", [P("t_w", "10.0", valid=("zero",))])]
     cmd = Cmd("meso", r"eq/meso", ["fix", "m", "all", "eq/meso"], [P("Nlambda", "100"), P("kc", "1.0")],
               thermal)
     b.add("meso.control-thermal", "control", fill(BASE_MESO, meso=cmd.line()), Expect("ok"), GOOD_FILES)

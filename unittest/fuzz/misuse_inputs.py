@@ -454,7 +454,7 @@ def gen_unfix_within(b):
     hops.name += "-thermal"
     systems.append(hops)
     mt = meso_system("elastic", MP_ARGS.replace("reform gaussian 0.05 0.1", "reform delta 0.0")
-                     + " grid 0.05 thermal 0.05 1.0 1.0 labels 8")
+                     + " grid 0.05 thermal 0.05 1.0 1.0 labels 8 aging log 0.05 1.0 rest 10")
     mt.name += "-thermal"
     systems.append(mt)
     for s in systems:

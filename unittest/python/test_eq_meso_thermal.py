@@ -1,4 +1,4 @@
-"""fix eq/meso at T > 0 (keywords thermal, barrier, labels, delay; lib
+"""fix eq/meso at T > 0 (keywords thermal, barrier, labels, delay, aging, rest; lib
 eq_meso_thermal) and the screening length lambda_s(v, T) (spec
 shared/notes/thermal-aging.md (e), check (f) 8), against independent
 references:
@@ -14,6 +14,8 @@ references:
 - with delay exp or fixed tau: F(X) and the attached fraction against eq-me with
   the same delay, the end against the steady state of
   tools/eqtools/thermal.py; 1, 2 ranks and a restart bit for bit;
+- with aging log or exp, a rest age, aging with a delay: F(X) against eq-me
+  with the same keywords; 1, 2 ranks and a restart bit for bit;
 - 1, 2, 4 ranks and a restart: the same blocks to the last bit;
 - errors of the keywords.
 """
@@ -154,6 +156,47 @@ def test_block_with_delay_follows_the_slider_master_equation(tmp_path, kind, tau
     assert abs(na[-1] - steady["n_a"]) < tola + relaxA
 
 
+# ---------------------------------------------------------- aging
+AGED = BLOCK.replace("labels {labels}\n", "labels {labels} {extra}\n")
+
+
+@pytest.mark.parametrize("extra", ["aging log 0.05 1.0", "aging exp 0.2 30.0",
+                                   "aging log 0.05 1.0 rest 10000.0",
+                                   "aging log 0.1 10.0 rest 100.0 delay exp 30.0"])
+def test_block_with_aging_follows_the_slider_master_equation(tmp_path, extra):
+    """Threshold aging (log, exp), a rest age and aging with a delay: one
+    unscreened block moved at v = 1e-2, theta = 0.05, steps dX = du/2:
+    F(X)/(N k_c) against eq-me with the same keywords (the renewal solver,
+    Richardson; its first life starts at the rest age) at every 10th step,
+    X up to 4 x_c.  Bound 5 du^2 as without aging (gtest
+    MesoThermalAging.ConstantVelocity and RestAge measured 3.6-4.2 du^2 at
+    theta = 0.05, second order).  The aging is felt: F at its peak differs
+    from the run without it by more than 20 times the bound."""
+    T, v, du, labels = 0.05, 1e-2, 0.01, 16
+    dX = 0.5 * du
+    nsteps = 800
+    runs, logs = {}, {}
+    for name, kw in (("aged", extra), ("plain", "")):
+        d = tmp_path / name
+        d.mkdir()
+        inp = d / "in.block"
+        inp.write_text(AGED.format(du=du, T=T, labels=labels, extra=kw, v=v, dt=dX / v,
+                                   every=10, nsteps=nsteps))
+        logs[name] = eqtools.run_lammps(inp, {}, cwd=d)
+        runs[name] = thermo_rows(logs[name])
+    assert "aging " + extra.split()[1] in logs["aged"], logs["aged"][-2000:]
+    X, F = runs["aged"][:, 1], runs["aged"][:, 2] / 100.0
+    me = eqtools.run_eqme(["threshold", "uniform", "0.75", "1.25", "reform", "delta", "0.0",
+                           "thermal", T, 1.0, 1.0, *extra.split(), "velocity", v,
+                           "dx", 5e-4, "xmax", 4.1, "force", "me.dat"], cwd=tmp_path)
+    ref = eqtools.load(tmp_path / "me.dat")
+    assert abs(X[-1] - nsteps * dX) < 1e-9 and F.max() > 0.4
+    tol = 5.0 * du * du
+    err = np.abs(F - np.interp(X, ref[:, 0], ref[:, 1])).max()
+    assert err < tol, err
+    assert abs(F.max() - runs["plain"][:, 2].max() / 100.0) > 20.0 * tol
+
+
 # ---------------------------------------------------------- screening length
 # measured: at cells = 4 (du = sd/(4 (1 + eps0))) and dX = du/2 the fitted
 # length is 0.3-0.4 % below the lattice's; with dX = du 1.3 %: the step and
@@ -196,16 +239,20 @@ def ring_blocks(d):
     return np.array([[float(x) for x in l.split()] for l in text if l.strip()])
 
 
-@pytest.mark.parametrize("delay,ranks", [("none", (1, 2, 4)), ("exp 30", (1, 2)),
-                                         ("fixed 30", (1, 2))])
-def test_ranks_and_restart_identical(tmp_path, delay, ranks):
+@pytest.mark.parametrize("delay,aging,ranks", [("none", "none", (1, 2, 4)),
+                                               ("exp 30", "none", (1, 2)),
+                                               ("fixed 30", "none", (1, 2)),
+                                               ("none", "log 0.1 1", (1, 2))])
+def test_ranks_and_restart_identical(tmp_path, delay, aging, ranks):
     """A ring of 12 blocks at T > 0 with screening (partners summed in the
     order of their atom IDs), without and with a formation delay (exp or
-    fixed 30: v tau = 0.3 x_c): 1, 2 (and 4) ranks give every block's state
-    to the last bit, a run split by write_restart/read_restart (2 -> the
-    last rank count) continues it bit for bit, and the delay changes the
-    run."""
-    base = dict(M=12, v=1e-2, grid=0.01, dX=0.005, Xmax=1.0, labels=8, delay=delay)
+    fixed 30: v tau = 0.3 x_c) or threshold aging (log, after a rest of
+    100): 1, 2 (and 4) ranks give every block's state to the last bit, a
+    run split by write_restart/read_restart (2 -> the last rank count)
+    continues it bit for bit (the ages travel in the blocks' state), and
+    the delay or the aging changes the run."""
+    base = dict(M=12, v=1e-2, grid=0.01, dX=0.005, Xmax=1.0, labels=8, delay=delay,
+                aging=aging, rest=100 if aging != "none" else 0)
     ref = None
     for n in ranks:
         d = tmp_path / f"np{n}"
@@ -224,11 +271,12 @@ def test_ranks_and_restart_identical(tmp_path, delay, ranks):
     eqtools.run_lammps(SCREEN, dict(base, out=d, Xmax=0.5, readrestart="half_restart"),
                        nprocs=ranks[-1], cwd=d)
     assert np.array_equal(ring_blocks(d), ref)
-    if delay != "none":
-        d = tmp_path / "nodelay"
+    if delay != "none" or aging != "none":
+        d = tmp_path / "plain"
         d.mkdir()
-        eqtools.run_lammps(SCREEN, dict(base, out=d, delay="none"), cwd=d)
-        assert np.abs(ring_blocks(d)[:, 2] - ref[:, 2]).max() > 1e-3    # eps: fewer attached
+        eqtools.run_lammps(SCREEN, dict(base, out=d, delay="none", aging="none", rest=0), cwd=d)
+        # eps: fewer attached (delay), later breaks (aging)
+        assert np.abs(ring_blocks(d)[:, 2] - ref[:, 2]).max() > 1e-3
 
 
 # ---------------------------------------------------------- errors
@@ -250,8 +298,9 @@ FIX = "fix m all eq/meso 100 1.0 threshold uniform 0.75 1.25 "
     ("grid 0.01 barrier 1 0", "Fix eq/meso barrier: needs thermal with T > 0"),
     ("grid 0.01 labels 8", "Fix eq/meso labels: needs thermal"),
     ("grid 0.01 thermal 0.05 1.0 1.0 labels 0", "Fix eq/meso labels: expected an integer"),
-    ("grid 0.01 thermal 0.05 1.0 1.0 aging log 0.1 1.0", "Fix eq/meso aging: not supported"),
-    ("grid 0.01 thermal 0.05 1.0 1.0 rest 10", "Fix eq/meso rest: not supported"),
+    ("grid 0.01 aging log 0.1 1.0", "Fix eq/meso aging: needs thermal with T > 0"),
+    ("grid 0.01 thermal 0.0 1.0 1.0 rest 10", "Fix eq/meso rest: needs thermal with T > 0"),
+    ("grid 0.01 thermal 0.05 1.0 1.0 aging exp 0.1 0", "Fix eq/meso aging tau_a: must be > 0"),
     ("grid 0.01 thermal 0.05 1.0 1.0 delay exp -1", "Fix eq/meso delay tau: must be >= 0"),
     ("grid 0.01 thermal 0.05 1.0 1.0 delay fixed 10\nrun 1",
      "Fix m eq/meso delay fixed: tau = 10 is 2000 time steps, more than the 1022"),

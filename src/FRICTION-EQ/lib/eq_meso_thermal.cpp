@@ -51,7 +51,7 @@ ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, doub
                                    const ThermalSpec &spec_, int nlabels, Crossing crossing_,
                                    MEStart start_) :
     Pc(std::move(Pc_)), R(std::move(R_)), du(du_), inv_du(1.0 / du_), spec(spec_),
-    nlabels_req(nlabels), crossing(crossing_), start(start_)
+    nlabels_req(nlabels), crossing(crossing_), start(start_), law(spec_)
 {
   if (!Pc) throw SpecError("threshold: missing threshold distribution");
   if (!(Pc->lower() >= 0.0))
@@ -62,10 +62,21 @@ ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, doub
   if (start == MEStart::REFORM && !R)
     throw SpecError("start: 'reform' needs a reform distribution (reform none given); allowed: "
                     "relaxed");
-  if (spec.aging != AgingLaw::NONE)
-    throw SpecError("aging: not supported by fix eq/meso yet (thermal, barrier and delay are)");
-  if (spec.rest > 0.0)
-    throw SpecError("rest: not supported by fix eq/meso yet (it needs threshold aging)");
+  if (spec.aging != AgingLaw::NONE &&
+      !(spec.beta >= 0.0 && std::isfinite(spec.beta) && spec.tau_a > 0.0 && std::isfinite(spec.tau_a)))
+    throw SpecError("aging: need a finite beta >= 0 and a finite tau_a > 0 (got beta " +
+                    fmt(spec.beta) + ", tau_a " + fmt(spec.tau_a) + ")");
+  if (!(spec.rest >= 0.0) || !std::isfinite(spec.rest))
+    throw SpecError("rest: t_w must be finite and >= 0 (got " + fmt(spec.rest) + ")");
+  aging = spec.aging != AgingLaw::NONE && spec.beta > 0.0;
+  // the ring holds thresholds up to ytop A(MESO_AGING_RING tau_a) (log;
+  // exp: its bound): the width depends on neither rest nor tau_a
+  if (aging && spec.aging == AgingLaw::LOG && spec.rest > MESO_AGING_RING * spec.tau_a)
+    throw SpecError("rest: t_w = " + fmt(spec.rest) + " is more than " + fmt(MESO_AGING_RING) +
+                    " tau_a (tau_a = " + fmt(spec.tau_a) + "), the oldest contacts a block's "
+                    "anchors hold with aging log; use a larger tau_a or a shorter rest");
+  if (aging)
+    aring = 1.0 + spec.beta * (spec.aging == AgingLaw::EXP ? 1.0 : std::log1p(MESO_AGING_RING));
   if (!(spec.tau >= 0.0) || !std::isfinite(spec.tau))
     throw SpecError("delay: tau must be finite and >= 0 (got " + fmt(spec.tau) + ")");
   if (spec.tau > 0.0) delay = spec.delay;
@@ -84,16 +95,18 @@ ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, doub
   if (du > dmax)
     throw GridError("grid: spacing " + fmt(du) + " is too coarse for threshold " + Pc->describe() +
                     " (sd " + fmt(sd) + "); the largest allowed value is " + fmt(dmax));
-  const double rows = 2.0 * std::ceil(ytop * inv_du) + 8.0;
-  const int nextra = extra_width();
-  if (!(NHEAD + rows * (nl + 1) + nextra <= MESO_MAX_WIDTH))
+  const double rows = 2.0 * std::ceil(ytop * aring * inv_du) + 8.0;
+  const int nextra = extra_width(), per_row = nl + 1 + (aging ? 1 : 0);
+  if (!(NHEAD + rows * per_row + nextra <= MESO_MAX_WIDTH))
     throw GridError("grid: spacing " + fmt(du) + " needs about " +
-                    fmt(NHEAD + rows * (nl + 1) + nextra) +
-                    " doubles per block with " + std::to_string(nl) +
-                    " threshold panels (limit " + std::to_string(MESO_MAX_WIDTH) +
-                    "); use a spacing >= " + fmt(min_grid()) + " or fewer labels");
+                    fmt(NHEAD + rows * per_row + nextra) + " doubles per block with " +
+                    std::to_string(nl) + " threshold panels" +
+                    (aging ? " and thresholds aged up to " + fmt(aring) + " times" : "") +
+                    " (limit " + std::to_string(MESO_MAX_WIDTH) + "); use a spacing >= " +
+                    fmt(min_grid()) + " or fewer labels");
   ncap = int(rows);
-  pool = NHEAD + ncap * (nl + 1);
+  ages = NHEAD + ncap * (nl + 1);
+  pool = ages + (aging ? ncap : 0);
   nwidth = pool + nextra;
   if (!Pc->is_point()) {
     eps_acc = std::max(0.0, 0.25 * sd * inv_du - 1.0);
@@ -149,8 +162,9 @@ int ThermalMesoModel::extra_width() const
 
 double ThermalMesoModel::min_grid() const
 {
-  const double room = MESO_MAX_WIDTH - NHEAD - extra_width() - 10.0 * (nl + 1);
-  return room > 0.0 ? 2.0 * ytop * (nl + 1) / room : HUGE_VAL;
+  const int per_row = nl + 1 + (aging ? 1 : 0);
+  const double room = MESO_MAX_WIDTH - NHEAD - extra_width() - 10.0 * per_row;
+  return room > 0.0 ? 2.0 * ytop * aring * per_row / room : HUGE_VAL;
 }
 
 std::unique_ptr<BlockModel> ThermalMesoModel::regrid(double du_new) const
@@ -171,6 +185,14 @@ const double *ThermalMesoModel::row(const double *s, long j) const
   return row(const_cast<double *>(s), j);
 }
 
+// the mean age of row j's contacts (aging only)
+double &ThermalMesoModel::age(double *s, long j) const
+{
+  long k = j % ncap;
+  if (k < 0) k += ncap;
+  return s[ages + k];
+}
+
 /* ---------------------------------------------------------------------- */
 
 void ThermalMesoModel::init(double *s, double X0) const
@@ -184,6 +206,7 @@ void ThermalMesoModel::init(double *s, double X0) const
   const double t = f - double(j);
   double *r = row(s, j);
   for (int l = 0; l < nl; ++l) r[1 + l] = (1.0 - t) * pw[l];
+  if (aging) age(s, j) = age(s, j + 1) = spec.rest;
   if (t > 0.0) {
     s[JHI] = double(j + 1);
     r = row(s, j + 1);
@@ -202,11 +225,34 @@ double ThermalMesoModel::rate_at(double y, double inv_xm, double coef) const
   return nu;
 }
 
+// the barrier's coefficient (x_s/x_c)^p/theta at threshold xs
+double ThermalMesoModel::coef_at(double xs) const
+{
+  return (spec.p == 0.0 ? 1.0 : std::pow(xs / spec.xc, spec.p)) / spec.theta;
+}
+
+namespace {
+
+// the fraction of a sub-step at which z, piecewise linear through z0, zm,
+// z1 at its start, middle and end, first reaches x (0 when z0 >= x)
+double crossing_fraction(double x, double z0, double zm, double z1)
+{
+  if (!(x > z0)) return 0.0;
+  if (zm >= x) return 0.5 * (x - z0) / (zm - z0);
+  if (z1 > zm) return 0.5 + 0.5 * std::min(1.0, (x - zm) / (z1 - zm));
+  return 1.0;
+}
+
+}    // namespace
+
 // one sub-step X0 -> X1 (|X1 - X0| <= du) over the time h: the thermal
 // breaks, then the threshold crossings; D, MX: broken mass and its first
 // moment of the break positions; DT: its first moment of the break times
 // from the sub-step's start (crossings when X passes them, those of an
-// eps jump at 0, thermal breaks at their Simpson-weighted mean time)
+// eps jump at 0, thermal breaks at their Simpson-weighted mean time).
+// Aging: a row's contacts (mean age a at the start) have the thresholds
+// x_s0 A(t); its history r[0] is the largest y/A(t) seen (the labels x_s0
+// left lie above it), the ratio taken at the start, middle and end.
 void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, double h, double &D,
                                double &MX, double &DT) const
 {
@@ -222,8 +268,16 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
   for (long j = jlo; j <= jhi; ++j) {
     double *r = row(s, j);
     const double A = double(j) * du;
-    if (std::min(X0, X1) - A <= -ytop) {    // compressed beyond every threshold
-      const double pos = std::min(Xhi, std::max(Xlo, A - ytop)), tp = when(pos);
+    // the threshold factors at the start, middle and end (1 without aging)
+    double f0 = 1.0, fm = 1.0, f1 = 1.0;
+    if (aging) {
+      const double a = age(s, j);
+      f0 = law.factor(a);
+      fm = law.factor(a + 0.5 * h);
+      f1 = law.factor(a + h);
+    }
+    if (std::min(X0, X1) - A <= -ytop * f1) {    // compressed beyond every threshold
+      const double pos = std::min(Xhi, std::max(Xlo, A - ytop * f1)), tp = when(pos);
       for (int l = 0; l < nl; ++l) {
         D += r[1 + l];
         MX += r[1 + l] * pos;
@@ -234,9 +288,9 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
     }
     // one-sided: a compressed contact is loaded as an unstretched one
     const double d0 = std::max(X0 - A, 0.0), d1 = std::max(X1 - A, 0.0);
-    const double yj = r[0];    // the thresholds left lie above y_j
+    const double y0 = g * d0, y1 = g * d1, ym = g * std::max(Xm - A, 0.0);
+    const double yj = r[0];    // the thresholds (labels) left lie above y_j
     if (thermal) {
-      const double y0 = g * d0, y1 = g * d1, ym = g * std::max(Xm - A, 0.0);
       for (int l = 0; l < nl; ++l) {
         const double m = r[1 + l];
         if (!(m > 0.0)) continue;
@@ -244,10 +298,19 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
         if (yj > pa[l]) {    // partly crossed: the midpoint of what is left
           const double xm = 0.5 * (std::min(yj, pb[l]) + pb[l]);
           inv = 1.0 / xm;
-          coef = (spec.p == 0.0 ? 1.0 : std::pow(xm / spec.xc, spec.p)) / spec.theta;
+          coef = coef_at(xm);
         }
-        const double n0 = rate_at(y0, inv, coef), nm = rate_at(ym, inv, coef),
-                     n1 = rate_at(y1, inv, coef);
+        double n0, nm, n1;
+        if (!aging) {
+          n0 = rate_at(y0, inv, coef);
+          nm = rate_at(ym, inv, coef);
+          n1 = rate_at(y1, inv, coef);
+        } else {    // the threshold x_m A(t) at the three times
+          const double xm = 1.0 / inv;
+          n0 = rate_at(y0, inv / f0, coef_at(xm * f0));
+          nm = rate_at(ym, inv / fm, coef_at(xm * fm));
+          n1 = rate_at(y1, inv / f1, coef_at(xm * f1));
+        }
         const double sum = n0 + 4.0 * nm + n1;
         if (!(sum > 0.0)) continue;
         double b = -m * std::expm1(-h / 6.0 * sum);
@@ -258,7 +321,9 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
         DT += b * (h * ((2.0 * nm + n1) / sum));
       }
     }
-    const double ynew = g * std::max(d0, d1);
+    // the history: y (aging: y/A) at the start, middle and end
+    const double z0 = y0 / f0, zm = ym / fm, z1 = y1 / f1;
+    const double ynew = aging ? std::max({z0, zm, z1}) : g * std::max(d0, d1);
     if (!(ynew > yj)) continue;
     const bool at_start = d0 > d1;    // eps grew: crossed at X0
     for (int l = 0; l < nl; ++l) {
@@ -275,11 +340,19 @@ void ThermalMesoModel::substep(double *s, double X0, double X1, double eps, doub
       } else {
         continue;
       }
-      const double pos = at_start ? X0 : std::min(Xhi, std::max(Xlo, A + xb / g));
+      double pos, tb;
+      if (aging) {    // where the history passes xb (linear between the three points)
+        const double c = crossing_fraction(xb, z0, zm, z1);
+        pos = X0 + dX * c;
+        tb = h * c;
+      } else {
+        pos = at_start ? X0 : std::min(Xhi, std::max(Xlo, A + xb / g));
+        tb = at_start ? 0.0 : when(pos);
+      }
       r[1 + l] = b == m ? 0.0 : m - b;
       D += b;
       MX += b * pos;
-      DT += b * (at_start ? 0.0 : when(pos));
+      DT += b * tb;
     }
     r[0] = ynew;
   }
@@ -300,9 +373,9 @@ double ThermalMesoModel::mean_wait(double L) const
 // step: at the end) and the part of it that re-forms within the
 // sub-step does so from then on.  On return D, MX are the mass re-forming
 // in the sub-step and the first moment of its positions (X at the mean
-// re-forming times: X is linear in time).
+// re-forming times: X is linear in time), MT that of its times.
 void ThermalMesoModel::wait(double *s, double X0, double X1, double h, double &D, double &MX,
-                            double DT) const
+                            double &MT, double DT) const
 {
   const double W = s[pool + WAIT], dX = X1 - X0;
   const double tb = break_time(h, D, DT);
@@ -310,10 +383,12 @@ void ThermalMesoModel::wait(double *s, double X0, double X1, double h, double &D
   const double aD = -D * std::expm1(-(h - tb) / spec.tau);
   s[pool + WAIT] = (W - aW) + (D - aD);
   const double inv_h = h > 0.0 ? 1.0 / h : 0.0;
-  const double xW = X0 + dX * (mean_wait(h) * inv_h);
-  const double xD = X0 + dX * ((tb + mean_wait(h - tb)) * inv_h);
+  const double tW = mean_wait(h), tD = tb + mean_wait(h - tb);
+  const double xW = X0 + dX * (tW * inv_h);
+  const double xD = X0 + dX * (tD * inv_h);
   D = aW + aD;
   MX = aW * xW + aD * xD;
+  MT = aW * tW + aD * tD;
 }
 
 // the mean time, from the sub-step's start, of the breaks of mass D with
@@ -333,10 +408,10 @@ double ThermalMesoModel::break_time(double h, double D, double DT) const
 // sub-step (std::runtime_error when MESO_DELAY_BINS are in flight).  Each
 // bin re-forms the part of it due within the
 // sub-step, at X at the middle of that part (X linear in time); the rest
-// stays uniform over what is left of its window.  On return D, MX as
+// stays uniform over what is left of its window.  On return D, MX, MT as
 // wait().  Bin: (start, end, mass), times from the sub-step's start.
 void ThermalMesoModel::fifo(double *s, double X0, double X1, double h, double &D, double &MX,
-                            double DT, long nsub) const
+                            double &MT, double DT, long nsub) const
 {
   double *q = s + pool;
   long head = long(q[FHEAD]), count = long(q[FCOUNT]);
@@ -358,7 +433,7 @@ void ThermalMesoModel::fifo(double *s, double X0, double X1, double h, double &D
     b[2] = D;
   }
   const double dX = X1 - X0, inv_h = h > 0.0 ? 1.0 / h : 0.0;
-  double Dr = 0.0, MXr = 0.0;
+  double Dr = 0.0, MXr = 0.0, MTr = 0.0;
   for (long k = 0; k < count; ++k) {
     double *b = bin(k);
     if (!(b[0] < h || b[1] <= h)) break;    // the windows are in order
@@ -368,6 +443,7 @@ void ThermalMesoModel::fifo(double *s, double X0, double X1, double h, double &D
     const double tm = 0.5 * (a + std::min(e, h));
     Dr += part;
     MXr += part * (X0 + dX * (tm * inv_h));
+    MTr += part * tm;
     b[2] = all ? 0.0 : b[2] - part;
     b[0] = h;
   }
@@ -383,11 +459,21 @@ void ThermalMesoModel::fifo(double *s, double X0, double X1, double h, double &D
   q[FCOUNT] = double(count);
   D = Dr;
   MX = MXr;
+  MT = MTr;
+}
+
+// every row's contacts grow older by h (aging)
+void ThermalMesoModel::grow_old(double *s, double h) const
+{
+  for (long j = long(s[JLO]); j <= long(s[JHI]); ++j) age(s, j) += h;
 }
 
 // the mass D broken in a sub-step re-forms unstretched at its mean break
-// position (crossing step: at X1), hat weights on the anchor nodes
-void ThermalMesoModel::reform(double *s, double X0, double X1, double D, double MX) const
+// position (crossing step: at X1), hat weights on the anchor nodes;
+// aging: a row's age becomes the mass-weighted mean of its contacts' and
+// the fresh ones' age_new
+void ThermalMesoModel::reform(double *s, double X0, double X1, double D, double MX,
+                              double age_new) const
 {
   if (!(D > 0.0)) return;
   if (!R) {
@@ -405,20 +491,36 @@ void ThermalMesoModel::reform(double *s, double X0, double X1, double D, double 
     hi = j - 1;
   }
   const long want_lo = std::min(lo, j), want_hi = std::max(hi, t > 0.0 ? j + 1 : j);
-  if (want_hi - want_lo + 1 > ncap)
+  if (want_hi - want_lo + 1 > ncap) {
+    if (aging)    // contacts older than the ring allows for (log aging)
+      throw std::runtime_error(
+          "aging: contacts older than " + fmt(MESO_AGING_RING) + " tau_a survive over " +
+          fmt(double(want_hi - want_lo) * du) + " of anchors, more than the block's ring holds "
+          "(thresholds up to " + fmt(ytop * aring) + ", aged by A(" + fmt(MESO_AGING_RING) +
+          " tau_a) = " + fmt(aring) + "); use a larger tau_a");
     throw std::logic_error("eq/meso thermal: anchor ring overflow (" +
                            std::to_string(want_hi - want_lo + 1) + " rows > " +
                            std::to_string(ncap) + ")");
+  }
   for (long k = want_lo; k < lo; ++k) std::memset(row(s, k), 0, (nl + 1) * sizeof(double));
   for (long k = hi + 1; k <= want_hi; ++k) std::memset(row(s, k), 0, (nl + 1) * sizeof(double));
   s[JLO] = double(want_lo);
   s[JHI] = double(want_hi);
+  add_fresh(s, j, D * (1.0 - t), age_new);
+  if (t > 0.0) add_fresh(s, j + 1, D * t, age_new);
+}
+
+// mass m of fresh contacts (age age_new) onto row j, by panels
+void ThermalMesoModel::add_fresh(double *s, long j, double m, double age_new) const
+{
   double *r = row(s, j);
-  for (int l = 0; l < nl; ++l) r[1 + l] += (D * (1.0 - t)) * pw[l];
-  if (t > 0.0) {
-    r = row(s, j + 1);
-    for (int l = 0; l < nl; ++l) r[1 + l] += (D * t) * pw[l];
+  if (aging) {
+    double old = 0.0;
+    for (int l = 0; l < nl; ++l) old += r[1 + l];
+    double &a = age(s, j);
+    a = old > 0.0 ? (old * a + m * age_new) / (old + m) : age_new;
   }
+  for (int l = 0; l < nl; ++l) r[1 + l] += m * pw[l];
 }
 
 // drop the empty rows at both ends of the occupied range
@@ -482,12 +584,21 @@ double ThermalMesoModel::advance(double *s, double X1, double eps, double h) con
   double total = 0.0, xa = X0;
   for (long k = 1; k <= n; ++k) {
     const double xb = k == n ? X1 : X0 + (X1 - X0) * (double(k) / double(n));
+    const double hs = h / double(n);
     double D = 0.0, MX = 0.0, DT = 0.0;
-    substep(s, xa, xb, eps, h / double(n), D, MX, DT);
+    substep(s, xa, xb, eps, hs, D, MX, DT);
     total += D;
-    if (delay == DelayKind::EXPONENTIAL) wait(s, xa, xb, h / double(n), D, MX, DT);
-    else if (delay == DelayKind::FIXED) fifo(s, xa, xb, h / double(n), D, MX, DT, n);
-    reform(s, xa, xb, D, MX);
+    // MT: the first moment of the re-forming times (no delay: the breaks')
+    double MT = DT;
+    if (delay == DelayKind::EXPONENTIAL) wait(s, xa, xb, hs, D, MX, MT, DT);
+    else if (delay == DelayKind::FIXED) fifo(s, xa, xb, hs, D, MX, MT, DT, n);
+    double age_new = 0.0;    // of the fresh contacts at the sub-step's end
+    if (aging) {
+      grow_old(s, hs);
+      const double tr = crossing == Crossing::STEP || !(D > 0.0) ? hs : MT / D;
+      age_new = std::min(hs, std::max(0.0, hs - tr));
+    }
+    reform(s, xa, xb, D, MX, age_new);
     trim(s);
     xa = xb;
   }
@@ -565,6 +676,11 @@ bool ThermalMesoModel::valid(const double *s) const
         return false;
     }
   }
+  if (aging)    // the rows' ages: finite and >= 0 (a NaN age would never break by crossing)
+    for (long j = long(lo); j <= long(hi); ++j) {
+      const double a = s[ages + ((j % ncap) + ncap) % ncap];
+      if (!(a >= 0.0 && std::isfinite(a))) return false;
+    }
   const double w = waiting(s);
   if (!(w >= 0.0 && w <= 1.0 + 1e-12)) return false;
   return std::isfinite(s[XPOS]) && s[DET] >= 0.0;
