@@ -89,6 +89,28 @@ VelocityError error_vs_slider(double theta, double v, double eps, double du, int
   return error_vs_slider(thermal(theta, p, q), v, eps, du, labels, dX, Xmax);
 }
 
+// 3000 random forward and backward moves, rests and jumps of eps: the
+// largest normalization error (infinite once a state is not valid)
+double random_moves(const ThermalMesoModel &m, Block &b, unsigned seed)
+{
+  std::mt19937_64 gen(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  double X = 0.0, worst = 0.0;
+  for (int k = 0; k < 3000; ++k) {
+    const double r = U(gen);
+    if (r < 0.1) X -= 0.05 * U(gen);
+    else if (r < 0.9) X += 0.02 * U(gen);
+    const double eps = 3.0 * U(gen) * U(gen);
+    b.go(X, eps, r < 0.95 ? 0.3 * U(gen) : 0.0);
+    worst = std::max(worst, m.normalization_error(b.s.data()));
+    if (!m.valid(b.s.data())) {
+      ADD_FAILURE() << "state not valid after call " << k;
+      return HUGE_VAL;
+    }
+  }
+  return worst;
+}
+
 ThermalSpec delayed(double theta, double tau, DelayKind kind = DelayKind::EXPONENTIAL)
 {
   ThermalSpec s = thermal(theta);
@@ -111,19 +133,7 @@ TEST(MesoThermal, ProbabilityConserved)
     const ThermalMesoModel m(make_uniform(0.75, 1.25), reform ? make_delta(0.0) : nullptr, 0.01,
                              thermal(0.05), 16);
     Block b(m);
-    std::mt19937_64 gen(7);
-    std::uniform_real_distribution<double> U(0.0, 1.0);
-    double X = 0.0, worst = 0.0;
-    for (int k = 0; k < 3000; ++k) {
-      const double r = U(gen);
-      if (r < 0.1) X -= 0.05 * U(gen);
-      else if (r < 0.9) X += 0.02 * U(gen);
-      const double eps = 3.0 * U(gen) * U(gen);
-      b.go(X, eps, r < 0.95 ? 0.3 * U(gen) : 0.0);
-      worst = std::max(worst, m.normalization_error(b.s.data()));
-      ASSERT_TRUE(m.valid(b.s.data()));
-    }
-    EXPECT_LT(worst, 1e-13);
+    EXPECT_LT(random_moves(m, b, 7), 1e-13);
     if (reform) EXPECT_NEAR(m.attached(b.s.data()), 1.0, 1e-13);
     else EXPECT_NEAR(m.attached(b.s.data()) + m.detached(b.s.data()), 1.0, 1e-13);
   }
@@ -829,19 +839,7 @@ TEST(MesoThermalAging, ProbabilityConserved)
     spec.tau = kind == DelayKind::NONE ? 0.0 : 3.0;
     const ThermalMesoModel m(make_uniform(0.75, 1.25), make_delta(0.0), 0.01, spec, 16);
     Block b(m);
-    std::mt19937_64 gen(11);
-    std::uniform_real_distribution<double> U(0.0, 1.0);
-    double X = 0.0, worst = 0.0;
-    for (int k = 0; k < 3000; ++k) {
-      const double r = U(gen);
-      if (r < 0.1) X -= 0.05 * U(gen);
-      else if (r < 0.9) X += 0.02 * U(gen);
-      const double eps = 3.0 * U(gen) * U(gen);
-      b.go(X, eps, r < 0.95 ? 0.3 * U(gen) : 0.0);
-      worst = std::max(worst, m.normalization_error(b.s.data()));
-      ASSERT_TRUE(m.valid(b.s.data())) << k;
-    }
-    EXPECT_LT(worst, 1e-13);
+    EXPECT_LT(random_moves(m, b, 11), 1e-13);
     EXPECT_NEAR(m.attached(b.s.data()) + m.waiting(b.s.data()), 1.0, 1e-13);
   }
 }
