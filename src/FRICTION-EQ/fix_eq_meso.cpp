@@ -93,7 +93,7 @@ struct FixEQMeso::Args {
 };
 
 FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
-    FixEQBlocks(lmp, narg, arg), thermal_flag(0), hstep(0.0), respa_step(0.0), in_setup(0),
+    FixEQBlocks(lmp, narg, arg), thermal_kernel(0), hstep(0.0), respa_step(0.0), in_setup(0),
     nlambda(0.0), kc(0.0), xc(0.0), screen_flag(0), kappa(0.0),
     lambda_c(0.0), rcut(0.0), window(0.0), list(nullptr), pi0_max(0.0), threshold_sd(0.0),
     grid_warned(0), grid_default(0), grid_fresh(1), window_safe(0.0), window_warned(0), eps_warned(0),
@@ -133,7 +133,7 @@ FixEQMeso::FixEQMeso(LAMMPS *lmp, int narg, char **arg) :
                    drive_flag ? fmt::format("; driving springs K = {} to a stage at {} moving at {}",
                                             kdrive, a.stage0, vstage)
                               : std::string(),
-                   thermal_flag
+                   thermal_kernel
                        ? fmt::format("; {} (theta = k_B T/eps_a = {:.6g}), {} threshold panels",
                                      a.thermal.text(), a.thermal.temperature * force->boltz /
                                      a.thermal.eps_a,
@@ -243,27 +243,33 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
   if (!a.have_threshold)
     error->all(FLERR, "Fix eq/meso: the threshold keyword is required; allowed styles: {}",
                feq::role_styles(feq::Role::THRESHOLD));
-  thermal_flag = a.have_thermal && a.thermal.temperature > 0.0 ? 1 : 0;
-  if (a.have_barrier && !thermal_flag)
+  // the thermal kernel (lib/eq_meso_thermal) keeps the contacts' ages and
+  // the delay pool: at T > 0, and at T = 0 with aging or a delay (theta = 0:
+  // no thermal breaks); otherwise the athermal kernel (lib/eq_meso)
+  const feq::ThermalSpec &ts = a.thermal.spec;
+  const bool hot = a.have_thermal && a.thermal.temperature > 0.0;
+  const bool aged = a.have_aging && ts.aging != feq::AgingLaw::NONE && ts.beta > 0.0;
+  const bool delayed = a.have_delay && ts.delay != feq::DelayKind::NONE && ts.tau > 0.0;
+  thermal_kernel = hot || aged || delayed ? 1 : 0;
+  if (a.have_barrier && !hot)
     error->all(FLERR, "Fix eq/meso barrier: needs thermal with T > 0 (the barrier shapes the "
                       "thermal rate)");
-  const feq::ThermalSpec &ts = a.thermal.spec;
-  if (a.have_delay && !thermal_flag && ts.delay != feq::DelayKind::NONE && ts.tau > 0.0)
-    error->all(FLERR, "Fix eq/meso delay: needs thermal with T > 0 (the delay pool is kept by "
-                      "the thermal kernel; at T = 0 use a tiny T)");
-  if (a.have_aging && !thermal_flag && ts.aging != feq::AgingLaw::NONE)
-    error->all(FLERR, "Fix eq/meso aging: needs thermal with T > 0 (the contacts' ages are kept "
-                      "by the thermal kernel; at T = 0 use a tiny T)");
-  if (a.have_rest && !thermal_flag && ts.rest > 0.0)
-    error->all(FLERR, "Fix eq/meso rest: needs thermal with T > 0 (the contacts' ages are kept "
-                      "by the thermal kernel; at T = 0 use a tiny T)");
-  if (a.labels && !thermal_flag)
-    error->all(FLERR, "Fix eq/meso labels: needs thermal with T > 0 (the threshold panels of the "
-                      "thermal kernel)");
-  if (thermal_flag && a.du == 0.0)
-    error->all(FLERR, "Fix eq/meso thermal: needs the grid keyword (at T > 0 the screened "
+  // (the ages shape only aged thresholds: rest without aging changes nothing)
+  if (a.have_rest && !thermal_kernel && ts.rest > 0.0)
+    error->all(FLERR, "Fix eq/meso rest: needs aging, delay or thermal with T > 0 (the thermal "
+                      "kernel keeps the contacts' ages; at T = 0 without aging they change "
+                      "nothing)");
+  if (a.labels && !thermal_kernel)
+    error->all(FLERR, "Fix eq/meso labels: needs thermal with T > 0, aging or delay (the "
+                      "threshold panels of the thermal kernel)");
+  // without screening eps = 0 and the default grid serves both kernels;
+  // with it the thermal kernel's eps0 depends on the velocity
+  if (thermal_kernel && screen_flag && a.du == 0.0)
+    error->all(FLERR, "Fix eq/meso {}: with screen needs the grid keyword ({} the screened "
                       "thresholds x_s/(1 + eps0) depend on the velocity: choose du <= sd/(4 (1 + "
-                      "eps0)), sd the thresholds' standard deviation, eps0 the steady load factor)");
+                      "eps0)), sd the thresholds' standard deviation, eps0 the steady load factor)",
+               hot ? "thermal" : aged ? "aging" : "delay",
+               hot ? "at T > 0" : aged ? "with threshold aging" : "with a formation delay");
 }
 
 // screen kappa lambda_c rcut
@@ -308,27 +314,29 @@ void FixEQMeso::make_model(Args &a)
   const double sd = std::sqrt(std::max(0.0, a.threshold.dist->variance()));
   threshold_sd = sd;
   thresholds = a.threshold.dist;
-  // at T > 0 (theta = k_B T/eps_a with LAMMPS' k_B)
+  // the thermal kernel's (theta = k_B T/eps_a with LAMMPS' k_B; 0 at T = 0)
   const feq::ThermalSpec spec =
-      thermal_flag ? a.thermal.finish(force->boltz, a.threshold.dist->mean()) : feq::ThermalSpec();
+      thermal_kernel ? a.thermal.finish(force->boltz, a.threshold.dist->mean()) : feq::ThermalSpec();
   const int labels = a.labels ? a.labels : feq::MESO_THERMAL_LABELS;
   fixed_tau = spec.delay == feq::DelayKind::FIXED ? spec.tau : 0.0;
   if (grid_default) a.du = feq::meso_default_grid(*a.threshold.dist);
   try {
     if (grid_default && !(a.du > 0.0)) throw feq::GridError("grid: zero width");
-    if (thermal_flag)
+    if (thermal_kernel)
       model.reset(new feq::ThermalMesoModel(a.threshold.dist, a.reform.dist, a.du, spec, labels,
                                             a.crossing, a.start));
     else
       model.reset(new feq::AthermalBlocks(std::unique_ptr<feq::MesoModel>(
           new feq::MesoModel(a.threshold.dist, a.reform.dist, a.du, a.crossing, a.start))));
-  } catch (const feq::GridError &) {
+  } catch (const feq::GridError &e) {
     if (!grid_default) throw;
+    // (the thermal kernel's state grows with its panels and aged thresholds)
     throw feq::SpecError(fmt::format("threshold {}: its standard deviation {:.6g} (from its "
                                      "moments) gives no usable default grid spacing (1/8 of it, "
-                                     "{:.6g}){}; set one with the grid keyword",
+                                     "{:.6g}){}; set one with the grid keyword{}",
                                      a.threshold.text, sd, a.du,
-                                     a.du > 0.0 ? " for a block's state" : ""));
+                                     a.du > 0.0 ? " for a block's state" : "",
+                                     thermal_kernel ? fmt::format(" ({})", e.what()) : ""));
   }
   shaping.add("Nlambda", EQRecord::number(nlambda));
   shaping.add("kc", EQRecord::number(kc));
@@ -336,11 +344,12 @@ void FixEQMeso::make_model(Args &a)
   shaping.add("reform", EQRecord::distribution(a.reform));
   shaping.add("grid", EQRecord::number(a.du));
   shaping.add("dir", std::string(1, "xyz"[idir]));
-  // at T > 0 only (athermal restart records are as before)
-  if (thermal_flag)
+  // with the thermal kernel only (athermal restart records are as before);
+  // at theta = 0 omega shapes nothing (barrier needs T > 0): recorded as 1
+  if (thermal_kernel)
     shaping.add("thermal", fmt::format("{:.17g}|{:.17g}|{:.17g}|{:.17g}|{}{}{}", spec.theta,
-                                       spec.omega, spec.p, spec.q, labels, delay_record(spec),
-                                       aging_record(spec)));
+                                       spec.theta > 0.0 ? spec.omega : 1.0, spec.p, spec.q,
+                                       labels, delay_record(spec), aging_record(spec)));
 }
 
 // what the arguments must satisfy together; returns the number of blocks
@@ -774,8 +783,8 @@ void FixEQMeso::check_thermal_grid(int i, double eps)
 // why the fix is on it and the grid the default would choose
 void FixEQMeso::check_screened_grid()
 {
-  // at T > 0 eps0 depends on the velocity: the grid is the user's (doc)
-  if (thermal_flag) return;
+  // with the thermal kernel eps0 depends on the velocity: the grid is the user's (doc)
+  if (thermal_kernel) return;
   const double screened_sd = threshold_sd * (1.0 - pi0_max);
   if (grid_warned || !(model->grid() > feq::MESO_GRID_SD_FRACTION * screened_sd)) return;
   grid_warned = 1;
@@ -962,18 +971,18 @@ void FixEQMeso::restart(char *buf)
     FixEQBlocks::restart(buf);
     return;
   }
-  // a thermal run's record has one keyword more (thermal): say which
-  // way the file and the command differ
+  // a record of the thermal kernel has one keyword more (thermal): say
+  // which way the file and the command differ
   const size_t nsig = shaping.hashes.size();
   const double nfile = rec[7];
-  if (nfile == double(nsig + 1) && !thermal_flag)
-    error->all(FLERR, "Fix {} eq/meso thermal: the restart file's blocks were made at T > 0 "
-                      "(keyword thermal): re-specify thermal (and barrier, labels) as in that run",
-               id);
-  if (nfile + 1.0 == double(nsig) && thermal_flag)
+  if (nfile == double(nsig + 1) && !thermal_kernel)
+    error->all(FLERR, "Fix {} eq/meso thermal: the restart file's blocks were made by the thermal "
+                      "kernel (thermal with T > 0, aging or delay): re-specify thermal, barrier, "
+                      "labels, aging and delay as in that run", id);
+  if (nfile + 1.0 == double(nsig) && thermal_kernel)
     error->all(FLERR, "Fix {} eq/meso thermal: the restart file's blocks were made athermal "
-                      "(no keyword thermal, or T = 0): remove thermal to continue them, or define "
-                      "the fix under another ID to start afresh", id);
+                      "(T = 0 without aging or delay): remove thermal, aging and delay to continue "
+                      "them, or define the fix under another ID to start afresh", id);
   const double du = rec[6];
   const bool adopt = grid_default && std::isfinite(du) && du > 0.0;
   if (!grid_default && std::isfinite(du) && du > 0.0 && du != model->grid())

@@ -98,7 +98,7 @@ class FixEQMeso : public FixEQBlocks {
 
  private:
   std::unique_ptr<feq::BlockModel> model;    // lib/eq_meso (athermal) or lib/eq_meso_thermal
-  int thermal_flag;    // thermal kernel (keyword thermal with T > 0)
+  int thermal_kernel;    // lib/eq_meso_thermal: thermal with T > 0, or aging or delay
   double hstep;        // time of the current step (0 at set-up)
   double respa_step;   // time of a step of the rRESPA level (0: update->dt)
   int in_setup;

@@ -218,9 +218,14 @@ TEST_F(EQMesoErrors, Thermal)
     fix(std::string("100 1.0 ") + T + " delay exp 0");
     command("unfix m");
   });
-  TEST_FAILURE(".*ERROR: Fix eq/meso thermal: needs the grid keyword \\(at T > 0 the screened "
-               "thresholds.*",
-               fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0"););
+  // the default grid serves the thermal kernel without screening, not with it
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0");
+    command("unfix m");
+  });
+  TEST_FAILURE(".*ERROR: Fix eq/meso thermal: with screen needs the grid keyword \\(at T > 0 the "
+               "screened thresholds.*",
+               fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0 screen 0.01 1.0 1.01"););
   TEST_FAILURE(".*ERROR: Fix eq/meso thermal omega: must be > 0 \\(got 0\\).*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 0"););
   TEST_FAILURE(".*ERROR: Fix eq/meso thermal T: expected a number, got 'hot'.*",
@@ -294,10 +299,15 @@ TEST_F(EQMesoErrors, Thermal)
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay exp long"););
   TEST_FAILURE(".*ERROR: Fix eq/meso delay: unknown value 'gamma'; allowed: none, fixed, exp.*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay gamma 1"););
-  TEST_FAILURE(".*ERROR: Fix eq/meso delay: needs thermal with T > 0.*",
-               fix(std::string("100 1.0 ") + T + " delay exp 1"););
-  TEST_FAILURE(".*ERROR: Fix eq/meso delay: needs thermal with T > 0.*",
-               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.0 1.0 1.0 delay exp 1"););
+  // at T = 0 a delay takes the thermal kernel (theta = 0), which needs a grid
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay: with screen needs the grid keyword \\(with a "
+               "formation delay.*",
+               fix(std::string("100 1.0 ") + T + " delay exp 1 screen 0.01 1.0 1.01"););
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.0 1.0 1.0 delay exp 1 labels 8");
+    command("run 0 post no");
+    command("unfix m");
+  });
   TEST_FAILURE(".*ERROR: Fix eq/meso delay: needs re-forming contacts \\(reform delta 0\\), not "
                "reform none.*",
                fix(std::string("100 1.0 ") + T + " reform none grid 0.02 thermal 0.05 1.0 1.0 "
@@ -309,13 +319,23 @@ TEST_F(EQMesoErrors, Thermal)
     command("run 0 post no");
     command("unfix m");
   });
-  TEST_FAILURE(".*ERROR: Fix eq/meso aging: needs thermal with T > 0.*",
-               fix(std::string("100 1.0 ") + T + " aging log 0.1 1"););
-  TEST_FAILURE(".*ERROR: Fix eq/meso rest: needs thermal with T > 0.*",
+  // at T = 0: aging takes the thermal kernel; rest alone changes nothing
+  TEST_FAILURE(".*ERROR: Fix eq/meso aging: with screen needs the grid keyword \\(with "
+               "threshold aging.*",
+               fix(std::string("100 1.0 ") + T + " screen 0.01 1.0 1.01 aging log 0.1 1"););
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " grid 0.02 aging log 0.1 1 rest 10");
+    command("run 0 post no");
+    command("unfix m");
+  });
+  TEST_FAILURE(".*ERROR: Fix eq/meso rest: needs aging, delay or thermal with T > 0.*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.0 1.0 1.0 rest 10"););
+  TEST_FAILURE(".*ERROR: Fix eq/meso barrier: needs thermal with T > 0.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 aging log 0.1 1 barrier 1 0"););
   TEST_FAILURE(".*ERROR: Fix eq/meso aging tau_a: must be > 0 \\(got 0\\).*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 aging log 0.1 0"););
-  TEST_FAILURE(".*ERROR: Fix eq/meso reform gaussian 0.05 0.1: with thermal, contacts re-form "
+  TEST_FAILURE(".*ERROR: Fix eq/meso reform gaussian 0.05 0.1: with the thermal kernel \\(thermal at T > 0, "
+               "aging or delay\\), contacts re-form "
                "unstretched \\(reform delta 0\\) or never \\(reform none\\).*",
                fix(std::string("100 1.0 ") + T +
                    " reform gaussian 0.05 0.1 grid 0.02 thermal 0.05 1.0 1.0"););
@@ -346,9 +366,13 @@ TEST_F(EQMesoErrors, ThermalRestartOfTheOtherKind)
   TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: the restart file's blocks were made athermal.*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0"););
   written_with(" thermal 0.05 1.0 1.0", true);
-  TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: the restart file's blocks were made at T > 0 "
-               "\\(keyword thermal\\).*",
+  TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: the restart file's blocks were made by the "
+               "thermal kernel \\(thermal with T > 0, aging or delay\\).*",
                fix(std::string("100 1.0 ") + T + " grid 0.02"););
+  written_with(" aging log 0.1 1", true);
+  TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: the restart file's blocks were made by the "
+               "thermal kernel.*",
+               fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.0 1.0 1.0"););
   // blocks written without a delay read with one (and the reverse), with
   // another aging law or without aging: the signature's keyword thermal
   // carries the delay and the aging

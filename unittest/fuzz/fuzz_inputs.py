@@ -866,6 +866,16 @@ def gen_meso(b):
     for suffix, cls, line, kw, p, val in mutate_cmd(cmd, done):
         ocls, exp = mutation_expect(cmd, cls, kw, p, val)
         b.add(f"meso.thermal-{suffix}", ocls, fill(BASE_MESO, meso=line), exp, GOOD_FILES)
+    # at T = 0 aging and a delay take the same kernel at theta = 0: every
+    # value of their keywords (one mutation leaves the other one on)
+    cold = [kv for kv in thermal if kv[0] not in ("thermal", "barrier")]
+    cmd = Cmd("meso", r"eq/meso", ["fix", "m", "all", "eq/meso"], [P("Nlambda", "100"), P("kc", "1.0")],
+              cold)
+    b.add("meso.control-cold-kernel", "control", fill(BASE_MESO, meso=cmd.line()), Expect("ok"),
+          GOOD_FILES)
+    for suffix, cls, line, kw, p, val in mutate_cmd(cmd, done):
+        ocls, exp = mutation_expect(cmd, cls, kw, p, val)
+        b.add(f"meso.cold-{suffix}", ocls, fill(BASE_MESO, meso=line), exp, GOOD_FILES)
     good = "fix m all eq/meso 100 1.0 threshold uniform 0.75 1.25"
     for bad in ("thresholds", "grids", "screening", "windows", "checks", "drives", "avalanches",
                 "stiffness"):

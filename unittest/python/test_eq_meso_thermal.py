@@ -16,7 +16,10 @@ references:
   tools/eqtools/thermal.py; 1, 2 ranks and a restart bit for bit;
 - with aging log or exp, a rest age, aging with a delay: F(X) against eq-me
   with the same keywords; 1, 2 ranks and a restart bit for bit;
+- at T = 0 with aging or a delay (the thermal kernel at theta = 0): F(X)
+  against eq-me at theta = 0; 1, 2 ranks and a restart bit for bit;
 - 1, 2, 4 ranks and a restart: the same blocks to the last bit;
+- without screening the default grid at T > 0 and with aging or a delay;
 - errors of the keywords.
 """
 import importlib.util
@@ -197,6 +200,71 @@ def test_block_with_aging_follows_the_slider_master_equation(tmp_path, extra):
     assert abs(F.max() - runs["plain"][:, 2].max() / 100.0) > 20.0 * tol
 
 
+@pytest.mark.parametrize("extra", ["aging log 0.05 1.0 rest 10000.0",
+                                   "aging exp 0.2 30.0 delay exp 30.0", "delay fixed 30.0"])
+def test_block_at_zero_temperature_with_aging_or_delay_follows_the_master_equation(tmp_path,
+                                                                                   extra):
+    """At T = 0 aging and delays use the thermal kernel at theta = 0 (no
+    thermal breaks): one unscreened block moved at v = 1e-2 with steps
+    dX = du/2, F(X)/(N k_c) against eq-me with the same keywords at
+    theta = 0 (the renewal solver) at every 10th step, X up to 4 x_c,
+    within 5 du^2 as at T > 0 (measured 0.3-0.6 du^2).  The keywords are
+    felt: F differs from the athermal kernel's run without them by more
+    than 20 times the bound somewhere."""
+    v, du, labels = 1e-2, 0.01, 16
+    dX = 0.5 * du
+    nsteps = 800
+    runs, logs = {}, {}
+    for name, kw in (("kept", "labels 16 " + extra), ("plain", "")):
+        d = tmp_path / name
+        d.mkdir()
+        inp = d / "in.block"
+        text = BLOCK.replace("    thermal {T!r} 1.0 1.0 labels {labels}\n", "    {extra}\n")
+        inp.write_text(text.format(du=du, extra=kw, v=v, dt=dX / v, every=10, nsteps=nsteps))
+        logs[name] = eqtools.run_lammps(inp, {}, cwd=d)
+        runs[name] = thermo_rows(logs[name])
+    assert "theta = k_B T/eps_a = 0)" in logs["kept"], logs["kept"][-2000:]
+    assert "threshold panels" not in logs["plain"]    # the athermal kernel
+    X, F = runs["kept"][:, 1], runs["kept"][:, 2] / 100.0
+    me = eqtools.run_eqme(["threshold", "uniform", "0.75", "1.25", "reform", "delta", "0.0",
+                           *extra.split(), "velocity", v, "dx", 5e-4, "xmax", 4.1, "force",
+                           "me.dat"], cwd=tmp_path)
+    ref = eqtools.load(tmp_path / "me.dat")
+    assert abs(X[-1] - nsteps * dX) < 1e-9 and F.max() > 0.4
+    tol = 5.0 * du * du
+    err = np.abs(F - np.interp(X, ref[:, 0], ref[:, 1])).max()
+    assert err < tol, err
+    assert np.abs(F - runs["plain"][:, 2] / 100.0).max() > 20.0 * tol
+
+
+@pytest.mark.parametrize("extra", ["thermal 0.05 1.0 1.0", "aging log 0.05 1.0 delay exp 30.0"])
+def test_default_grid_without_screening(tmp_path, extra):
+    """Without screen (eps = 0) the thermal kernel takes the default grid
+    of the athermal one, sd/8 of the thresholds (uniform [0.75, 1.25]:
+    0.5/sqrt(12)/8 = 0.0180422): at T > 0, and at T = 0 with aging and a
+    delay, one block moved at v = 1e-2 with steps dX = du/2 follows eq-me
+    within the kernel's bound 5 du^2 as on a grid set by hand."""
+    v = 1e-2
+    du = 0.5 / math.sqrt(12.0) / 8.0
+    dX = 0.5 * du
+    nsteps = int(4.0 / dX)
+    inp = tmp_path / "in.block"
+    text = BLOCK.replace(" grid {du!r} &\n    thermal {T!r} 1.0 1.0 labels {labels}\n",
+                         " {extra}\n")
+    inp.write_text(text.format(extra=extra, v=v, dt=dX / v, every=10, nsteps=nsteps))
+    log = eqtools.run_lammps(inp, {}, cwd=tmp_path)
+    assert f"grid {du:.6g} (" in log, log[-2000:]
+    rows = thermo_rows(log)
+    X, F = rows[:, 1], rows[:, 2] / 100.0
+    me = eqtools.run_eqme(["threshold", "uniform", "0.75", "1.25", "reform", "delta", "0.0",
+                           *extra.split(), "velocity", v, "dx", 5e-4, "xmax", 4.1, "force",
+                           "me.dat"], cwd=tmp_path)
+    ref = eqtools.load(tmp_path / "me.dat")
+    assert abs(X[-1] - nsteps * dX) < 1e-9 and F.max() > 0.4
+    err = np.abs(F - np.interp(X, ref[:, 0], ref[:, 1])).max()
+    assert err < 5.0 * du * du, (err, du)
+
+
 # ---------------------------------------------------------- screening length
 # measured: at cells = 4 (du = sd/(4 (1 + eps0))) and dX = du/2 the fitted
 # length is 0.3-0.4 % below the lattice's; with dX = du 1.3 %: the step and
@@ -239,20 +307,23 @@ def ring_blocks(d):
     return np.array([[float(x) for x in l.split()] for l in text if l.strip()])
 
 
-@pytest.mark.parametrize("delay,aging,ranks", [("none", "none", (1, 2, 4)),
-                                               ("exp 30", "none", (1, 2)),
-                                               ("fixed 30", "none", (1, 2)),
-                                               ("none", "log 0.1 1", (1, 2))])
-def test_ranks_and_restart_identical(tmp_path, delay, aging, ranks):
-    """A ring of 12 blocks at T > 0 with screening (partners summed in the
-    order of their atom IDs), without and with a formation delay (exp or
-    fixed 30: v tau = 0.3 x_c) or threshold aging (log, after a rest of
+@pytest.mark.parametrize("delay,aging,ranks,T", [("none", "none", (1, 2, 4), 0.05),
+                                                 ("exp 30", "none", (1, 2), 0.05),
+                                                 ("fixed 30", "none", (1, 2), 0.05),
+                                                 ("none", "log 0.1 1", (1, 2), 0.05),
+                                                 ("exp 30", "log 0.1 1", (1, 2), 0.0)])
+def test_ranks_and_restart_identical(tmp_path, delay, aging, ranks, T):
+    """A ring of 12 blocks at T > 0 (and at T = 0 with aging and a delay,
+    the thermal kernel at theta = 0) with screening (partners summed in
+    the order of their atom IDs), without and with a formation delay (exp
+    or fixed 30: v tau = 0.3 x_c) or threshold aging (log, after a rest of
     100): 1, 2 (and 4) ranks give every block's state to the last bit, a
     run split by write_restart/read_restart (2 -> the last rank count)
     continues it bit for bit (the ages travel in the blocks' state), and
     the delay or the aging changes the run."""
-    base = dict(M=12, v=1e-2, grid=0.01, dX=0.005, Xmax=1.0, labels=8, delay=delay,
-                aging=aging, rest=100 if aging != "none" else 0)
+    # at T = 0 the aged contacts (A(100) = 1.46) hold beyond X = 1: slide to 2
+    base = dict(M=12, v=1e-2, grid=0.01, dX=0.005, Xmax=1.0 if T > 0 else 2.0, labels=8,
+                delay=delay, aging=aging, rest=100 if aging != "none" else 0, T=T)
     ref = None
     for n in ranks:
         d = tmp_path / f"np{n}"
@@ -266,17 +337,26 @@ def test_ranks_and_restart_identical(tmp_path, delay, aging, ranks):
     assert ref[:, 2].max() > 0.3    # screened (eps0 = 2.4 when steady, without delay)
     d = tmp_path / "split"
     d.mkdir()
-    eqtools.run_lammps(SCREEN, dict(base, out=d, Xmax=0.5, restartfile="half_restart"),
+    half = 0.5 * base["Xmax"]
+    eqtools.run_lammps(SCREEN, dict(base, out=d, Xmax=half, restartfile="half_restart"),
                        nprocs=2, cwd=d)
-    eqtools.run_lammps(SCREEN, dict(base, out=d, Xmax=0.5, readrestart="half_restart"),
+    eqtools.run_lammps(SCREEN, dict(base, out=d, Xmax=half, readrestart="half_restart"),
                        nprocs=ranks[-1], cwd=d)
     assert np.array_equal(ring_blocks(d), ref)
     if delay != "none" or aging != "none":
         d = tmp_path / "plain"
         d.mkdir()
-        eqtools.run_lammps(SCREEN, dict(base, out=d, delay="none", aging="none", rest=0), cwd=d)
-        # eps: fewer attached (delay), later breaks (aging)
-        assert np.abs(ring_blocks(d)[:, 2] - ref[:, 2]).max() > 1e-3
+        # (at T = 0 without aging and delay the athermal kernel refuses labels:
+        # there the delay alone is dropped)
+        plain = dict(delay="none") if T == 0 else dict(delay="none", aging="none", rest=0)
+        eqtools.run_lammps(SCREEN, dict(base, out=d, **plain), cwd=d)
+        # eps: fewer attached (delay), later breaks (aging); at T = 0 and X = 2
+        # the delay changes eps by 5e-5 but the force (column 4) by half
+        got = ring_blocks(d)
+        if T > 0:
+            assert np.abs(got[:, 2] - ref[:, 2]).max() > 1e-3
+        else:
+            assert np.abs(got[:, 4] - ref[:, 4]).max() > 0.1 * np.abs(ref[:, 4]).max()
 
 
 # ---------------------------------------------------------- errors
@@ -291,22 +371,27 @@ FIX = "fix m all eq/meso 100 1.0 threshold uniform 0.75 1.25 "
 
 
 @pytest.mark.parametrize("args,needle", [
-    ("thermal 0.05 1.0 1.0", "Fix eq/meso thermal: needs the grid keyword"),
+    ("thermal 0.05 1.0 1.0 screen 0.01 1.0 1.01",
+     "Fix eq/meso thermal: with screen needs the grid keyword"),
     ("grid 0.01 thermal -1 1.0 1.0", "Fix eq/meso thermal T: must be >= 0"),
     ("grid 0.01 thermal 0.05 0.0 1.0", "Fix eq/meso thermal eps_a: must be > 0"),
     ("grid 0.01 thermal 0.05 1.0 1.0 barrier -1 0", "Fix eq/meso barrier p: must be >= 0"),
     ("grid 0.01 barrier 1 0", "Fix eq/meso barrier: needs thermal with T > 0"),
+    ("grid 0.01 aging log 0.1 1.0 barrier 1 0", "Fix eq/meso barrier: needs thermal with T > 0"),
     ("grid 0.01 labels 8", "Fix eq/meso labels: needs thermal"),
     ("grid 0.01 thermal 0.05 1.0 1.0 labels 0", "Fix eq/meso labels: expected an integer"),
-    ("grid 0.01 aging log 0.1 1.0", "Fix eq/meso aging: needs thermal with T > 0"),
-    ("grid 0.01 thermal 0.0 1.0 1.0 rest 10", "Fix eq/meso rest: needs thermal with T > 0"),
+    ("aging log 0.1 1.0 screen 0.01 1.0 1.01", "Fix eq/meso aging: with screen needs the grid"),
+    ("screen 0.01 1.0 1.01 delay exp 10", "Fix eq/meso delay: with screen needs the grid keyword"),
+    ("grid 0.01 thermal 0.0 1.0 1.0 rest 10", "Fix eq/meso rest: needs aging, delay or thermal"),
+    ("grid 0.01 aging log 0.0 1.0 rest 10", "Fix eq/meso rest: needs aging, delay or thermal"),
     ("grid 0.01 thermal 0.05 1.0 1.0 aging exp 0.1 0", "Fix eq/meso aging tau_a: must be > 0"),
     ("grid 0.01 thermal 0.05 1.0 1.0 delay exp -1", "Fix eq/meso delay tau: must be >= 0"),
     ("grid 0.01 thermal 0.05 1.0 1.0 delay fixed 10\nrun 1",
      "Fix m eq/meso delay fixed: tau = 10 is 2000 time steps, more than the 1022"),
-    ("grid 0.01 delay exp 10", "Fix eq/meso delay: needs thermal with T > 0"),
     ("grid 0.01 thermal 0.05 1.0 1.0 reform uniform -0.1 0.1",
-     "with thermal, contacts re-form unstretched"),
+     "with the thermal kernel (thermal at T > 0, aging or delay), contacts re-form unstretched"),
+    ("grid 0.01 aging log 0.1 1.0 reform uniform -0.1 0.1",
+     "with the thermal kernel (thermal at T > 0, aging or delay), contacts re-form unstretched"),
 ])
 def test_errors_name_the_keyword(tmp_path, args, needle):
     inp = tmp_path / "in.err"
@@ -319,7 +404,9 @@ def test_restart_of_the_other_kind_is_an_error(tmp_path):
     """A restart file written athermal and read with thermal (and the
     reverse) is an error naming the keyword thermal."""
     for write, read, needle in (("", "thermal 0.05 1.0 1.0", "were made athermal"),
-                                ("thermal 0.05 1.0 1.0", "", "were made at T > 0")):
+                                ("thermal 0.05 1.0 1.0", "", "were made by the thermal kernel"),
+                                ("aging log 0.1 1.0", "", "were made by the thermal kernel"),
+                                ("", "delay exp 10", "were made athermal")):
         inp = tmp_path / "in.w"
         inp.write_text(HEAD + FIX + "grid 0.01 " + write + "\nrun 1\nwrite_restart r.bin\n")
         eqtools.run_lammps(inp, {}, cwd=tmp_path)
@@ -327,3 +414,11 @@ def test_restart_of_the_other_kind_is_an_error(tmp_path):
         inp.write_text("read_restart r.bin\n" + FIX + "grid 0.01 " + read + "\nrun 1\n")
         log = eqtools.run_lammps(inp, {}, cwd=tmp_path, check=False)
         assert needle in log and "thermal" in log.split("ERROR")[-1], log[-2000:]
+    # at T = 0 omega shapes nothing: the blocks continue with another one
+    inp = tmp_path / "in.w"
+    inp.write_text(HEAD + FIX + "grid 0.01 thermal 0.0 1.0 5.0 aging log 0.1 1.0\nrun 1\n"
+                   "write_restart r.bin\n")
+    eqtools.run_lammps(inp, {}, cwd=tmp_path)
+    inp = tmp_path / "in.r"
+    inp.write_text("read_restart r.bin\n" + FIX + "grid 0.01 aging log 0.1 1.0\nrun 1\n")
+    assert "ERROR" not in eqtools.run_lammps(inp, {}, cwd=tmp_path)

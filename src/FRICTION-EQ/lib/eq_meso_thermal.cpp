@@ -57,7 +57,8 @@ ThermalMesoModel::ThermalMesoModel(DistributionPtr Pc_, DistributionPtr R_, doub
   if (!(Pc->lower() >= 0.0))
     throw SpecError("threshold " + Pc->describe() + ": breaking thresholds must be >= 0");
   if (R && !(R->is_point() && R->mean() == 0.0))
-    throw SpecError("reform " + R->describe() + ": with thermal, contacts re-form unstretched "
+    throw SpecError("reform " + R->describe() + ": with the thermal kernel (thermal at T > 0, aging or "
+                    "delay), contacts re-form unstretched "
                     "(reform delta 0) or never (reform none)");
   if (start == MEStart::REFORM && !R)
     throw SpecError("start: 'reform' needs a reform distribution (reform none given); allowed: "
