@@ -363,10 +363,11 @@ void FixEQContacts::init()
                    modify->fix[i]->id);
     }
   }
-  if (field && model->thermal_active())
-    error->all(FLERR, "Fix {} eq/contacts: the keywords {} are not supported with pair style "
-                      "eq/elastic yet (interacting contacts are athermal and ageless): remove them "
-                      "or the pair style", id, THERMAL_KEYWORDS);
+  const feq::ThermalSpec &ts = model->thermal_model().params();
+  if (field && model->thermal_active() && ts.delay != feq::DelayKind::NONE && ts.tau > 0.0)
+    error->all(FLERR, "Fix {} eq/contacts delay: not supported with pair style eq/elastic (a "
+                      "waiting contact would leave the field): remove delay or the pair style",
+               id);
 }
 
 // formed, and not waiting to re-form (temperature, aging or delays)
@@ -407,19 +408,19 @@ void FixEQContacts::setup_pre_force(int /*vflag*/)
   if (!field) return;
   mark_departed();
   // contacts break during runs only, not during minimization
-  field_step(update->whichflag == 1);
+  field_step(update->whichflag == 1, 0.0);
 }
 
 void FixEQContacts::pre_force(int /*vflag*/)
 {
   ++nevaluation;
-  if (field) field_step(true);
+  if (field) field_step(true, update->dt);
 }
 
 void FixEQContacts::min_pre_force(int /*vflag*/)
 {
   ++nevaluation;
-  if (field) field_step(false);
+  if (field) field_step(false, 0.0);
 }
 
 void FixEQContacts::setup(int vflag)
@@ -810,9 +811,12 @@ void FixEQContacts::record_detached()
   ++nversion;
 }
 
-void FixEQContacts::field_step(bool allow_breaks)
+// dt: the time of the step (0 at the set-up of a run and in minimization)
+void FixEQContacts::field_step(bool allow_breaks, double dt)
 {
   EQElasticField *elastic = field_now();
+  const bool hot = model->thermal_active() && allow_breaks;
+  if (hot && dt > 0.0) save_effective();
   stretches();
   local_sum[SUM_BREAKS] = 0.0;
   rounds_last = 0;
@@ -822,8 +826,15 @@ void FixEQContacts::field_step(bool allow_breaks)
     Hooks hooks(this, elastic);
     AvalancheResult res;
     try {
+      // at T > 0 or with aging: the thermal breaks of the step, then the
+      // avalanche (a new run may come with other parameters: new_run())
+      if (hot && dt > 0.0) thermal_stage(hooks.field(), dt);
+      if (hot && dt == 0.0)
+        for (const int i : members) model->new_run(state[i]);
+      const bool probed = hot && dt > 0.0;
       res = avalanche(*model, state, members.data(), static_cast<int>(members.size()), break_tol,
-                      hooks, blist, dsv);
+                      hooks, blist, dsv, probed ? tbreak.data() : nullptr,
+                      probed ? tage.data() : nullptr);
     } catch (const BreakError &e) {
       error->one(FLERR, "Fix eq/contacts: {}", e.what());
     }
@@ -848,6 +859,45 @@ void FixEQContacts::field_step(bool allow_breaks)
   for (const int i : broke) {
     double *st = state[i];
     if (st[CS_THRESHOLD] > 0.0) st[CS_STRETCH] = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
+  }
+}
+
+// the effective stretch e = s + h/k of every formed contact at the end of
+// the last step (NaN: none), before stretches() takes the new positions
+void FixEQContacts::save_effective()
+{
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  if (static_cast<int>(eprev.size()) < atom->nmax) eprev.resize(atom->nmax);
+  for (int i = 0; i < nlocal; i++) {
+    const double *st = state[i];
+    eprev[i] = (mask[i] & groupbit) && st[CS_THRESHOLD] > 0.0
+        ? st[CS_STRETCH] + st[CS_FIELD] / st[CS_STIFFNESS]
+        : NAN;
+  }
+}
+
+// the thermal part of the step at the field f of its start (the field
+// changes only at breaks): each formed contact's effective stretch goes
+// linearly from eprev to s + h/k; a contact that breaks thermally is
+// marked for the avalanche's first round (tbreak: its |e| then, > 0)
+void FixEQContacts::thermal_stage(const feq::AvalancheField &f, double dt)
+{
+  const tagint *const tag = atom->tag;
+  if (static_cast<int>(tbreak.size()) < atom->nmax) {
+    tbreak.resize(atom->nmax);
+    tage.resize(atom->nmax);
+  }
+  for (const int i : members) {
+    double *st = state[i];
+    tbreak[i] = tage[i] = 0.0;
+    if (!(st[CS_THRESHOLD] > 0.0) || !std::isfinite(eprev[i])) continue;
+    const double e1 = st[CS_STRETCH] + f.h[i] / st[CS_STIFFNESS];
+    const ContactModel::ThermalProbe r = model->probe(st, static_cast<uint64_t>(tag[i]), eprev[i], e1, dt);
+    if (!r.broke) continue;
+    const double eb = eprev[i] + (e1 - eprev[i]) * r.frac;
+    tbreak[i] = std::max(std::fabs(eb), std::numeric_limits<double>::min());
+    tage[i] = (1.0 - r.frac) * dt;
   }
 }
 

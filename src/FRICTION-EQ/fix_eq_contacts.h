@@ -48,6 +48,7 @@ FixStyle(eq/contacts,FixEQContacts);
 
 namespace feq {
 class ContactModel;
+struct AvalancheField;
 }
 
 namespace LAMMPS_NS {
@@ -120,6 +121,10 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   // counters of evaluations and versions, and the last change set (the
   // breaks of an avalanche round, from version chg_from)
   std::vector<double> qbuf, dsv;
+  // at T > 0 with pair eq/elastic, by row: the effective stretch at the
+  // end of the last step, and this step's thermal breaks (their |e|, the
+  // age of the new contact); valid within one field_step()
+  std::vector<double> eprev, tbreak, tage;
   std::vector<int> members, blist;
   std::vector<int> broke;    // contacts re-formed in this step's avalanche (once per round)
   bigint nevaluation, nversion, chg_from;
@@ -143,7 +148,9 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void mark_departed();
   EQElasticField *field_now();
   void stretches();
-  void field_step(bool allow_breaks);
+  void field_step(bool allow_breaks, double dt);
+  void save_effective();
+  void thermal_stage(const feq::AvalancheField &f, double dt);
   void record_changes(const int *list, int n, const double *ds, bool exact);
   void record_detached();
   void apply(bool allow_breaks);

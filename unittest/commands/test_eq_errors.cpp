@@ -128,13 +128,17 @@ TEST_F(EQContactsErrors, TemperatureAgingDelay)
   HIDE_OUTPUT([&] {
     command("unfix q");
     command("unfix c");
-    fix(base + "aging log 0.1 1.0");
+    fix(base + "aging log 0.1 1.0 thermal 0.05 1.0 1.0");
     command("comm_modify cutoff 3.5");
     command("pair_style eq/elastic 3.0");
     command("pair_coeff 1 1 0.06 3.0");
+    // interacting contacts at T > 0 and with aging run
+    command("run 0 post no");
+    command("unfix c");
+    fix(base + "delay exp 2.0");
   });
-  TEST_FAILURE(".*ERROR: Fix c eq/contacts: the keywords thermal, barrier, aging, delay, rest are "
-               "not supported with pair style eq/elastic yet.*",
+  TEST_FAILURE(".*ERROR: Fix c eq/contacts delay: not supported with pair style eq/elastic \\(a "
+               "waiting contact would leave the field\\).*",
                command("run 0 post no"););
 }
 

@@ -1048,3 +1048,84 @@ TEST(ContactModel, BoundRiseShortcutAtItsEdge)
       }
   EXPECT_GT(n, 100000);
 }
+
+// interacting contacts at T > 0: probe() samples the same thermal break as
+// advance() (the same draws, up to the aged threshold), and break_once()
+// at its level re-forms the contact as advance() does, the motion after
+// the break carried (crossing exact), the new life of age (1 - f) dt.
+// advance() samples the new life over the rest of the step too: the
+// contacts whose new life breaks again in that rest are left out
+TEST(Thinning, ProbeAndBreakOnceEqualAdvance)
+{
+  ThermalSpec t = theta_spec(0.1, 2.0, 0.25);
+  t.aging = AgingLaw::LOG;
+  t.beta = 0.05;
+  t.tau_a = 1.0;
+  const ContactModel m =
+      thermal_model(t, true, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"));
+  int broke = 0, held = 0;
+  for (uint64_t tag = 1; tag <= 10000; ++tag) {
+    std::vector<double> a(m.columns(), 0.0);
+    m.form(a.data(), tag, 0.0);
+    const double e0 = 0.3 + 0.4 * (tag % 7) / 7.0, dt = 0.5 + (tag % 5);
+    const double e1 = e0 + 0.02 * dt;
+    a[CS_STRETCH] = e0;
+    a[CT_AGE] = 2.0;
+    std::vector<double> b = a;
+    long nb = 0;
+    const ThermalStepResult r = m.advance(a.data(), tag, e1, dt, nb);
+    const ContactModel::ThermalProbe p = m.probe(b.data(), tag, e0, e1, dt);
+    if (nb == 0) {    // held: both aged by dt, the same sampler state
+      ASSERT_FALSE(p.broke) << tag;
+      EXPECT_EQ(b[CT_AGE], a[CT_AGE]) << tag;
+      EXPECT_EQ(b[CT_BUDGET], a[CT_BUDGET]) << tag;
+      EXPECT_EQ(b[CT_CANDIDATE], a[CT_CANDIDATE]) << tag;
+      EXPECT_EQ(b[CS_STRETCH], e0) << tag;    // the stretch is the caller's
+      ++held;
+      continue;
+    }
+    if (nb > 1 || !p.broke) continue;    // broke again, or at the threshold
+    ASSERT_GT(p.frac, 0.0);
+    ASSERT_LT(p.frac, 1.0);
+    const double eb = e0 + (e1 - e0) * p.frac;
+    const double s = m.break_once(b.data(), tag, e1, 0.0, 0.0, std::fabs(eb), (1.0 - p.frac) * dt);
+    EXPECT_NEAR(s, r.stretch, 1e-12) << tag;
+    EXPECT_EQ(b[CS_THRESHOLD], a[CS_THRESHOLD]) << tag;
+    EXPECT_EQ(b[CS_NBREAK], a[CS_NBREAK]) << tag;
+    EXPECT_NEAR(b[CT_AGE], a[CT_AGE], 1e-12 * dt) << tag;
+    EXPECT_EQ(b[CT_XS_LOW], b[CS_THRESHOLD]) << tag;    // a new life
+    ++broke;
+  }
+  // (enough of both cases to compare)
+  EXPECT_GT(broke, 500);
+  EXPECT_GT(held, 500);
+}
+
+// the threshold the avalanche tests is the aged one; break_once() at it
+// carries e - x_s0 A(age) and starts a life of age 0; a delay is refused
+TEST(Thinning, BreakOnceAtTheAgedThreshold)
+{
+  ThermalSpec t;
+  t.aging = AgingLaw::LOG;
+  t.beta = 0.1;
+  t.tau_a = 1.0;
+  const ContactModel m =
+      thermal_model(t, true, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"));
+  std::vector<double> a(m.columns(), 0.0);
+  m.form(a.data(), 5, 0.0);
+  a[CT_AGE] = 100.0;
+  const double xs = a[CS_THRESHOLD] * (1.0 + 0.1 * std::log1p(100.0));
+  EXPECT_DOUBLE_EQ(m.threshold_now(a.data()), xs);
+  a[CS_STRETCH] = xs + 0.01;
+  const double s = m.break_once(a.data(), 5, xs + 0.01, 0.0, 0.0);
+  EXPECT_NEAR(s, 0.01, 1e-14);    // reform delta 0 plus the overshoot
+  EXPECT_EQ(a[CT_AGE], 0.0);
+  EXPECT_EQ(m.threshold_now(a.data()), a[CS_THRESHOLD]);
+  t.delay = DelayKind::EXPONENTIAL;
+  t.tau = 3.0;
+  const ContactModel d =
+      thermal_model(t, true, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"));
+  std::vector<double> b(d.columns(), 0.0);
+  d.form(b.data(), 5, 0.0);
+  EXPECT_THROW(d.break_once(b.data(), 5, 2.0, 0.0, 0.0), BreakError);
+}

@@ -50,7 +50,8 @@ ContactModel::ContactModel(double kc, uint64_t seed_, const DistributionSpec &th
                            const ThermalSpec &thermal_) :
     k0(kc), seed(seed_), threshold(threshold_), reform(reform_), stiffness(stiffness_),
     exact(exact_), reform_force(reform_force_), start_reform(start_reform_), thermal(thermal_),
-    thermal_on(thermal_.active()), thermal_T(thermal_.thermal())
+    thermal_on(thermal_.active()), thermal_T(thermal_.thermal()),
+    aging_on(thermal_.active() && thermal_.aging != AgingLaw::NONE && thermal_.beta > 0.0)
 {
   if (!threshold.dist) throw SpecError("threshold: missing distribution");
   if (!(k0 > 0.0) || !std::isfinite(k0)) throw SpecError("kc must be finite and > 0");
@@ -183,7 +184,8 @@ double ContactModel::renew(double *st, uint64_t tag, uint64_t event) const
   return r;
 }
 
-double ContactModel::break_once(double *st, uint64_t tag, double e, double h, double K) const
+double ContactModel::break_once(double *st, uint64_t tag, double e, double h, double K,
+                                double level, double age) const
 {
   if (!std::isfinite(e))
     throw BreakError("force of contact " + std::to_string(tag) + " is " + num(e * st[CS_STIFFNESS]) +
@@ -194,11 +196,26 @@ double ContactModel::break_once(double *st, uint64_t tag, double e, double h, do
                                                  "carry its partners' force beyond its threshold "
                                                  "and break without end: use reform_as force or "
                                                  "a smaller ftilde)")));
+  if (thermal_on && thermal.params().delay != DelayKind::NONE && thermal.params().tau > 0.0)
+    throw BreakError("contact " + std::to_string(tag) + ": a formation delay is not supported "
+                     "for interacting contacts (a waiting contact would leave the field)");
   const double sign = e > 0.0 ? 1.0 : -1.0;
-  const double over = exact ? e - sign * st[CS_THRESHOLD] : 0.0;
+  const double xs = level > 0.0 ? level : threshold_now(st);
+  const double over = exact ? e - sign * xs : 0.0;
   const double s_old = st[CS_STRETCH];
-  const double r = renew(st, tag, static_cast<uint64_t>(st[CS_NBREAK]) + 1);
-  if (std::isnan(r)) return 0.0;
+  const uint64_t event = static_cast<uint64_t>(st[CS_NBREAK]) + 1;
+  const double r = renew(st, tag, event);
+  if (std::isnan(r)) {
+    if (thermal_on) {    // detached for good: no bound (quick_attached())
+      st[CT_AGE] = st[CT_WAIT] = st[CT_PENDING] = 0.0;
+      st[CT_BOUND_S] = NO_BOUND;
+    }
+    return 0.0;
+  }
+  if (thermal_on) {
+    start_life(st, tag, event, 0u);
+    st[CT_AGE] = age;
+  }
   const double target = sign * r + over;    // new force / k
   double s_new = target;
   if (reform_force && K != 0.0) {
@@ -333,6 +350,40 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
       s_a = sign * r;
     }
   }
+}
+
+ContactModel::ThermalProbe ContactModel::probe(double *st, uint64_t tag, double e0, double e1,
+                                               double dt) const
+{
+  ThermalProbe res;
+  check_finite(st, tag, e1, false);
+  const double a_a = st[CT_AGE], xs0 = st[CS_THRESHOLD];
+  // up to where e crosses the aged threshold (the avalanche breaks it there)
+  double g = 1.0, xs_end = 0.0;
+  if (!(std::fabs(e1) < st[CT_XS_LOW])) {
+    const double xs_b = xs0 * thermal.factor(a_a + dt);
+    const double d_b = std::fabs(e1) - xs_b;
+    if (!(d_b < 0.0)) {
+      const double d_a = std::fabs(e0) - xs0 * thermal.factor(a_a);
+      g = d_a < 0.0 ? d_a / (d_a - d_b) : 0.0;
+    } else {
+      xs_end = xs_b;
+    }
+  }
+  if (thermal_T && dt > 0.0 && g > 0.0) {
+    const double x_g = g == 1.0 ? e1 : e0 + (e1 - e0) * g;
+    double g_t = 1.0;
+    if (thin(st, tag, e0, x_g, a_a, dt * g, g_t)) {
+      res.broke = true;
+      res.frac = g * g_t;
+      return res;
+    }
+  }
+  st[CT_AGE] = a_a + dt;
+  if (xs_end > 0.0) raise_xs_low(st, xs_end);
+  // the bound covers the effective stretch (the next step's start) or is dropped
+  if (!(std::fabs(e1) <= st[CT_BOUND_S])) st[CT_BOUND_S] = NO_BOUND;
+  return res;
 }
 
 /* ----------------------------------------------------------------------
@@ -496,10 +547,10 @@ double ContactModel::resolve(double *st, uint64_t tag, double s, double tol, lon
 
 namespace {
 // over its threshold in the field h (the breaking test of every round)
-inline bool over(const double *st, double h, double tol)
+inline bool over(const ContactModel &model, const double *st, double h, double tol)
 {
-  const double th = st[CS_THRESHOLD];
-  if (th <= 0.0) return false;
+  if (st[CS_THRESHOLD] <= 0.0) return false;
+  const double th = model.threshold_now(st);
   const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
   return !(std::fabs(e) < th - ContactModel::tolerance(st, tol));
 }
@@ -507,20 +558,21 @@ inline bool over(const double *st, double h, double tol)
 // the contacts over their thresholds at the start of a round, in the
 // order of their rows: among every member, or among the rows whose h
 // changed (tested as named, the few found sorted)
-void candidates(const double *const *rows, const int *members, int nmembers, double tol,
-                const AvalancheField &f, bool all, std::vector<int> &list)
+void candidates(const ContactModel &model, const double *const *rows, const int *members,
+                int nmembers, double tol, const AvalancheField &f, bool all, const double *thermal,
+                std::vector<int> &list)
 {
   list.clear();
   if (all || !f.changed) {
     for (int m = 0; m < nmembers; ++m) {
       const int i = members[m];
-      if (over(rows[i], f.h[i], tol)) list.push_back(i);
+      if ((thermal && thermal[i] > 0.0) || over(model, rows[i], f.h[i], tol)) list.push_back(i);
     }
     return;
   }
   for (int m = 0; m < f.nchanged; ++m) {
     const int i = f.changed[m];
-    if (over(rows[i], f.h[i], tol)) list.push_back(i);
+    if (over(model, rows[i], f.h[i], tol)) list.push_back(i);
   }
   std::sort(list.begin(), list.end());
   list.erase(std::unique(list.begin(), list.end()), list.end());
@@ -529,7 +581,7 @@ void candidates(const double *const *rows, const int *members, int nmembers, dou
 
 AvalancheResult avalanche(const ContactModel &model, double *const *rows, const int *members,
                           int nmembers, double tol, AvalancheHooks &hooks, std::vector<int> &list,
-                          std::vector<double> &ds)
+                          std::vector<double> &ds, const double *thermal, const double *thermal_age)
 {
   AvalancheResult res;
   list.reserve(nmembers);
@@ -537,7 +589,9 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
   while (true) {
     // the contacts over their thresholds at the start of the round: in
     // the order of their rows, whichever candidates were tested
-    candidates(rows, members, nmembers, tol, f, res.rounds == 0, list);
+    // (the thermal breaks of the step in the first round only)
+    const double *hot = res.rounds == 0 ? thermal : nullptr;
+    candidates(model, rows, members, nmembers, tol, f, res.rounds == 0, hot, list);
     // their breaks (this rank's own contacts: nothing global yet), and
     // whether an incremental field can follow them; then the round's
     // counts over all ranks, in one reduction
@@ -549,7 +603,9 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
       const double h = f.h[i];
       const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
       const double s_old = st[CS_STRETCH];
-      ds[i] = model.break_once(st, hooks.tag(i), e, h, f.k[i]) - s_old;
+      const bool th = hot && hot[i] > 0.0;
+      ds[i] = model.break_once(st, hooks.tag(i), e, h, f.k[i], th ? hot[i] : 0.0,
+                               th ? thermal_age[i] : 0.0) - s_old;
       if (!(std::fabs(ds[i]) <= AVALANCHE_CHANGE_MAX * (1.0 + std::fabs(st[CS_STRETCH])))) ++sums[1];
     }
     hooks.global_sum(sums, 2);

@@ -151,8 +151,32 @@ class ContactModel {
 
   // one break of a contact whose effective stretch e reached its
   // threshold; h, K: its field and coupling (0, 0 without interaction).
-  // Returns the new stretch (0 when it detached for good: CS_THRESHOLD < 0).
-  double break_once(double *st, uint64_t tag, double e, double h, double K) const;
+  // level > 0: it broke where |e| was level (a thermal break within the
+  // step; the motion since goes into the new contact with crossing
+  // exact), else at its threshold (threshold_now()).  With temperature or
+  // aging the new contact starts a life of age `age`.  Returns the new
+  // stretch (0 when it detached for good: CS_THRESHOLD < 0).
+  double break_once(double *st, uint64_t tag, double e, double h, double K, double level = 0.0,
+                    double age = 0.0) const;
+
+  // the threshold of a formed contact now: x_s, with aging x_s0 A(age)
+  double threshold_now(const double *st) const
+  {
+    return aging_on ? st[CS_THRESHOLD] * thermal.factor(st[CT_AGE]) : st[CS_THRESHOLD];
+  }
+
+  // interacting contacts at T > 0 (no delay): the thermal part of one time
+  // step dt of an attached contact whose effective stretch goes linearly
+  // from e0 to e1.  Samples the thermal break up to where e would cross
+  // the aged threshold (thinning, as advance()); the crossing itself and
+  // everything after a break is the avalanche's.  Without a thermal break
+  // the contact ages by dt; with one, the row is left at the break (its
+  // sampler state consumed up to it) for break_once().
+  struct ThermalProbe {
+    bool broke = false;
+    double frac = 1.0;    // fraction of the step at which it broke
+  };
+  ThermalProbe probe(double *st, uint64_t tag, double e0, double e1, double dt) const;
 
   // without interaction: every break of one contact within a step, until
   // |s| < x_s - tol; returns the new stretch and adds to nbreaks
@@ -290,7 +314,7 @@ class ContactModel {
   double reform_cdf_lo, reform_cdf_hi;    // R truncated to |r| < max threshold
   double reform_top;                      // max threshold (effective for unbounded P_c)
   ThermalModel thermal;
-  bool thermal_on, thermal_T;
+  bool thermal_on, thermal_T, aging_on;
 
   mutable SamplerCounts counts;
 
@@ -364,10 +388,14 @@ struct AvalancheResult {
 // when the field names them: the others stay below their thresholds.
 // The field names rows of the contacts only (rows[i] and h[i] exist).
 // tol: relative tolerance of the breaking test (see tolerance()).  list,
-// ds: scratch (ds indexed by row).
+// ds: scratch (ds indexed by row).  thermal (by row, or nullptr): > 0
+// for a contact that broke thermally within the step (ContactModel::
+// probe()) at |e| = thermal[i], its new life then of age thermal_age[i]:
+// it breaks in the first round, at that level.
 AvalancheResult avalanche(const ContactModel &model, double *const *rows, const int *members,
                           int nmembers, double tol, AvalancheHooks &hooks, std::vector<int> &list,
-                          std::vector<double> &ds);
+                          std::vector<double> &ds, const double *thermal = nullptr,
+                          const double *thermal_age = nullptr);
 
 // an avalanche may take at most this many rounds
 constexpr int AVALANCHE_MAX_ROUNDS = 100000;
