@@ -549,7 +549,11 @@ namespace {
 // over its threshold in the field h (the breaking test of every round)
 inline bool over(const ContactModel &model, const double *st, double h, double tol)
 {
-  if (st[CS_THRESHOLD] <= 0.0) return false;
+  const double th0 = st[CS_THRESHOLD];
+  if (th0 <= 0.0) return false;
+  // below x_s0, below the aged threshold too (no A(age) to evaluate)
+  if (std::fabs(st[CS_STRETCH] + h / st[CS_STIFFNESS]) < th0 - ContactModel::tolerance(st, tol))
+    return false;
   const double th = model.threshold_now(st);
   const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
   return !(std::fabs(e) < th - ContactModel::tolerance(st, tol));
