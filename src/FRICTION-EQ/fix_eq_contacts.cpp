@@ -816,6 +816,7 @@ void FixEQContacts::field_step(bool allow_breaks, double dt)
 {
   EQElasticField *elastic = field_now();
   const bool hot = model->thermal_active() && allow_breaks;
+  if (hot && dt == 0.0) reform_waiting();
   if (hot && dt > 0.0) save_effective();
   stretches();
   local_sum[SUM_BREAKS] = 0.0;
@@ -877,10 +878,11 @@ void FixEQContacts::save_effective()
   }
 }
 
-// the thermal part of the step at the field f of its start (the field
-// changes only at breaks): each formed contact's effective stretch goes
-// linearly from eprev to s + h/k; a contact that breaks thermally is
-// marked for the avalanche's first round (tbreak: its |e| then, > 0)
+// the thermal part of the step at the field f of its start (for a rigid
+// slider the field changes only at breaks): each formed contact's
+// effective stretch goes linearly from eprev to s + h/k; a contact that
+// breaks thermally is marked for the avalanche's first round (tbreak: its
+// e then; NaN: no thermal break)
 void FixEQContacts::thermal_stage(const feq::AvalancheField &f, double dt)
 {
   const tagint *const tag = atom->tag;
@@ -890,14 +892,30 @@ void FixEQContacts::thermal_stage(const feq::AvalancheField &f, double dt)
   }
   for (const int i : members) {
     double *st = state[i];
-    tbreak[i] = tage[i] = 0.0;
+    tbreak[i] = NAN;
+    tage[i] = 0.0;
     if (!(st[CS_THRESHOLD] > 0.0) || !std::isfinite(eprev[i])) continue;
     const double e1 = st[CS_STRETCH] + f.h[i] / st[CS_STIFFNESS];
-    const ContactModel::ThermalProbe r = model->probe(st, static_cast<uint64_t>(tag[i]), eprev[i], e1, dt);
+    const ContactModel::ThermalProbe r =
+        model->probe(st, static_cast<uint64_t>(tag[i]), eprev[i], e1, dt);
     if (!r.broke) continue;
-    const double eb = eprev[i] + (e1 - eprev[i]) * r.frac;
-    tbreak[i] = std::max(std::fabs(eb), std::numeric_limits<double>::min());
+    tbreak[i] = eprev[i] + (e1 - eprev[i]) * r.frac;
     tage[i] = (1.0 - r.frac) * dt;
+  }
+}
+
+// contacts of a restart file written with a delay that still wait: the
+// delay is off with the pair style, so they re-form now, with the
+// stretch they were to re-form with
+void FixEQContacts::reform_waiting()
+{
+  const EQUtil::Unwrap unwrap(atom, domain, idir);
+  const int *const mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    double *st = state[i];
+    if (!(mask[i] & groupbit) || !(st[CS_THRESHOLD] > 0.0) || !(st[CT_WAIT] > 0.0)) continue;
+    st[CS_ANCHOR] = unwrap(i) - st[CT_PENDING];
+    st[CT_WAIT] = st[CT_PENDING] = 0.0;
   }
 }
 

@@ -122,8 +122,8 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   // breaks of an avalanche round, from version chg_from)
   std::vector<double> qbuf, dsv;
   // at T > 0 with pair eq/elastic, by row: the effective stretch at the
-  // end of the last step, and this step's thermal breaks (their |e|, the
-  // age of the new contact); valid within one field_step()
+  // end of the last step, and this step's thermal breaks (their e, NaN for
+  // none; the age of the new contact); valid within one field_step()
   std::vector<double> eprev, tbreak, tage;
   std::vector<int> members, blist;
   std::vector<int> broke;    // contacts re-formed in this step's avalanche (once per round)
@@ -151,6 +151,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void field_step(bool allow_breaks, double dt);
   void save_effective();
   void thermal_stage(const feq::AvalancheField &f, double dt);
+  void reform_waiting();
   void record_changes(const int *list, int n, const double *ds, bool exact);
   void record_detached();
   void apply(bool allow_breaks);

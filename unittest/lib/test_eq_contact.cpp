@@ -1051,54 +1051,69 @@ TEST(ContactModel, BoundRiseShortcutAtItsEdge)
 
 // interacting contacts at T > 0: probe() samples the same thermal break as
 // advance() (the same draws, up to the aged threshold), and break_once()
-// at its level re-forms the contact as advance() does, the motion after
-// the break carried (crossing exact), the new life of age (1 - f) dt.
-// advance() samples the new life over the rest of the step too: the
+// at the effective stretch where it broke re-forms the contact as
+// advance() does: on that side (also where e changes sign within the
+// step), the motion after the break carried (crossing exact), the new
+// life of age (1 - f) dt; with crossing step at the end of the step, age
+// 0.  advance() samples the new life over the rest of the step too: the
 // contacts whose new life breaks again in that rest are left out
 TEST(Thinning, ProbeAndBreakOnceEqualAdvance)
 {
-  ThermalSpec t = theta_spec(0.1, 2.0, 0.25);
+  ThermalSpec t = theta_spec(0.3, 2.0, 0.25);
   t.aging = AgingLaw::LOG;
   t.beta = 0.05;
   t.tau_a = 1.0;
-  const ContactModel m =
-      thermal_model(t, true, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"));
-  int broke = 0, held = 0;
-  for (uint64_t tag = 1; tag <= 10000; ++tag) {
-    std::vector<double> a(m.columns(), 0.0);
-    m.form(a.data(), tag, 0.0);
-    const double e0 = 0.3 + 0.4 * (tag % 7) / 7.0, dt = 0.5 + (tag % 5);
-    const double e1 = e0 + 0.02 * dt;
-    a[CS_STRETCH] = e0;
-    a[CT_AGE] = 2.0;
-    std::vector<double> b = a;
-    long nb = 0;
-    const ThermalStepResult r = m.advance(a.data(), tag, e1, dt, nb);
-    const ContactModel::ThermalProbe p = m.probe(b.data(), tag, e0, e1, dt);
-    if (nb == 0) {    // held: both aged by dt, the same sampler state
-      ASSERT_FALSE(p.broke) << tag;
-      EXPECT_EQ(b[CT_AGE], a[CT_AGE]) << tag;
-      EXPECT_EQ(b[CT_BUDGET], a[CT_BUDGET]) << tag;
-      EXPECT_EQ(b[CT_CANDIDATE], a[CT_CANDIDATE]) << tag;
-      EXPECT_EQ(b[CS_STRETCH], e0) << tag;    // the stretch is the caller's
-      ++held;
-      continue;
+  for (const bool exact : {true, false}) {
+    const ContactModel m(1.0, 4711, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"),
+                         spec(make_uniform(-0.3, 0.3), "uniform -0.3 0.3"), DistributionSpec{},
+                         exact, true, false, t);
+    int broke = 0, held = 0, across = 0;
+    for (uint64_t tag = 1; tag <= 10000; ++tag) {
+      std::vector<double> a(m.columns(), 0.0);
+      m.form(a.data(), tag, 0.0);
+      // from -0.6 ... 0.6, moving up or down by 0.8 or less
+      const double e0 = -0.6 + 1.2 * (tag % 13) / 12.0, dt = 0.5 + (tag % 5);
+      const double e1 = e0 + (tag % 2 ? 0.8 : -0.8) * (tag % 3) / 2.0;
+      a[CS_STRETCH] = e0;
+      a[CT_AGE] = 2.0;
+      std::vector<double> b = a;
+      long nb = 0;
+      const ThermalStepResult r = m.advance(a.data(), tag, e1, dt, nb);
+      const ContactModel::ThermalProbe p = m.probe(b.data(), tag, e0, e1, dt);
+      if (nb == 0) {    // held: both aged by dt, the same sampler state
+        ASSERT_FALSE(p.broke) << tag;
+        EXPECT_EQ(b[CT_AGE], a[CT_AGE]) << tag;
+        EXPECT_EQ(b[CT_BUDGET], a[CT_BUDGET]) << tag;
+        EXPECT_EQ(b[CT_CANDIDATE], a[CT_CANDIDATE]) << tag;
+        EXPECT_EQ(b[CS_STRETCH], e0) << tag;    // the stretch is the caller's
+        ++held;
+        continue;
+      }
+      // no thermal break: advance() broke at the aged threshold
+      const double xs_end = b[CS_THRESHOLD] * m.thermal_model().factor(2.0 + dt);
+      if (!p.broke) {
+        EXPECT_GE(std::fabs(e1), xs_end * (1.0 - 1e-12)) << tag;
+        continue;
+      }
+      if (nb > 1) continue;    // its new life broke again within the step
+      ASSERT_GT(p.frac, 0.0);
+      ASSERT_LT(p.frac, 1.0);
+      const double eb = e0 + (e1 - e0) * p.frac;
+      const double s = m.break_once(b.data(), tag, e1, 0.0, 0.0, eb, (1.0 - p.frac) * dt);
+      EXPECT_NEAR(s, r.stretch, 1e-12) << tag;
+      EXPECT_EQ(b[CS_THRESHOLD], a[CS_THRESHOLD]) << tag;
+      EXPECT_EQ(b[CS_NBREAK], a[CS_NBREAK]) << tag;
+      EXPECT_NEAR(b[CT_AGE], a[CT_AGE], 1e-12 * dt) << tag;
+      if (!exact) EXPECT_EQ(b[CT_AGE], 0.0) << tag;
+      EXPECT_EQ(b[CT_XS_LOW], b[CS_THRESHOLD]) << tag;    // a new life
+      ++broke;
+      if ((eb < 0.0) != (e1 < 0.0)) ++across;
     }
-    if (nb > 1 || !p.broke) continue;    // broke again, or at the threshold
-    ASSERT_GT(p.frac, 0.0);
-    ASSERT_LT(p.frac, 1.0);
-    const double eb = e0 + (e1 - e0) * p.frac;
-    const double s = m.break_once(b.data(), tag, e1, 0.0, 0.0, std::fabs(eb), (1.0 - p.frac) * dt);
-    EXPECT_NEAR(s, r.stretch, 1e-12) << tag;
-    EXPECT_EQ(b[CS_THRESHOLD], a[CS_THRESHOLD]) << tag;
-    EXPECT_EQ(b[CS_NBREAK], a[CS_NBREAK]) << tag;
-    EXPECT_NEAR(b[CT_AGE], a[CT_AGE], 1e-12 * dt) << tag;
-    EXPECT_EQ(b[CT_XS_LOW], b[CS_THRESHOLD]) << tag;    // a new life
-    ++broke;
+    // (enough of each case to compare)
+    EXPECT_GT(broke, 500) << exact;
+    EXPECT_GT(held, 500) << exact;
+    EXPECT_GT(across, 50) << exact;
   }
-  // (enough of both cases to compare)
-  EXPECT_GT(broke, 500);
-  EXPECT_GT(held, 500);
 }
 
 // the threshold the avalanche tests is the aged one; break_once() at it

@@ -20,7 +20,8 @@ avalanche tests the aged thresholds x_s0 A(age).  References:
   a run split by a restart continues it the same way;
 - with coupling, F_k falls as v falls (thermal creep: velocity
   strengthening), by far more than its scatter;
-- a delay is an error naming the keyword.
+- a delay is an error naming the keyword; contacts that wait in a
+  restart file written with one re-form at the set-up.
 """
 import numpy as np
 import pytest
@@ -139,6 +140,23 @@ def test_friction_falls_with_velocity(tmp_path):
         t = thermo(run(tmp_path / f"v{v}", v=v, extra="thermal 0.03 1.0 1.0"))
         means.append(t[t[:, 1] >= 2.0, 2].mean())
     assert means[0] - means[1] > 0.02 and means[1] - means[2] > 0.02, means
+
+
+def test_waiting_contacts_of_a_restart_reform(tmp_path):
+    """A restart file of independent contacts with a delay (86 of the
+    480 waiting at X = 1) continued with the pair style, whose contacts take no
+    delay: the waiting ones re-form at the set-up, so that after one step
+    none waits and every contact carries force again (F far above the
+    waiting state's)."""
+    extra = "thermal 0.03 1.0 1.0"
+    run(tmp_path, pair="no", extra=extra + " delay exp 10.0", Xmax=1.0, wr="w.restart",
+        more="f_c[10]")
+    waiting = state(tmp_path)[:, -1]
+    assert (waiting > 0).sum() > N / 10    # many wait
+    t = thermo(run(tmp_path, extra=extra, Xmax=1.002, start="restart", file="w.restart",
+                   more="f_c[10]"))
+    assert (state(tmp_path)[:, -1] == 0.0).all()
+    assert np.isfinite(t[:, 2]).all()
 
 
 def test_delay_is_an_error(tmp_path):

@@ -185,7 +185,7 @@ double ContactModel::renew(double *st, uint64_t tag, uint64_t event) const
 }
 
 double ContactModel::break_once(double *st, uint64_t tag, double e, double h, double K,
-                                double level, double age) const
+                                double e_break, double age) const
 {
   if (!std::isfinite(e))
     throw BreakError("force of contact " + std::to_string(tag) + " is " + num(e * st[CS_STIFFNESS]) +
@@ -199,9 +199,11 @@ double ContactModel::break_once(double *st, uint64_t tag, double e, double h, do
   if (thermal_on && thermal.params().delay != DelayKind::NONE && thermal.params().tau > 0.0)
     throw BreakError("contact " + std::to_string(tag) + ": a formation delay is not supported "
                      "for interacting contacts (a waiting contact would leave the field)");
-  const double sign = e > 0.0 ? 1.0 : -1.0;
-  const double xs = level > 0.0 ? level : threshold_now(st);
-  const double over = exact ? e - sign * xs : 0.0;
+  // (a thermal break: on the side where it broke, as advance(); at e = 0
+  // the positive one.  A break at the threshold has |e| >= x_s > 0)
+  const bool hot = !std::isnan(e_break) && exact;
+  const double sign = (hot && e_break != 0.0 ? e_break : e) >= 0.0 ? 1.0 : -1.0;
+  const double over = !exact ? 0.0 : hot ? e - e_break : e - sign * threshold_now(st);
   const double s_old = st[CS_STRETCH];
   const uint64_t event = static_cast<uint64_t>(st[CS_NBREAK]) + 1;
   const double r = renew(st, tag, event);
@@ -214,7 +216,7 @@ double ContactModel::break_once(double *st, uint64_t tag, double e, double h, do
   }
   if (thermal_on) {
     start_life(st, tag, event, 0u);
-    st[CT_AGE] = age;
+    if (hot) st[CT_AGE] = age;
   }
   const double target = sign * r + over;    // new force / k
   double s_new = target;
@@ -570,7 +572,8 @@ void candidates(const ContactModel &model, const double *const *rows, const int 
   if (all || !f.changed) {
     for (int m = 0; m < nmembers; ++m) {
       const int i = members[m];
-      if ((thermal && thermal[i] > 0.0) || over(model, rows[i], f.h[i], tol)) list.push_back(i);
+      if ((thermal && !std::isnan(thermal[i])) || over(model, rows[i], f.h[i], tol))
+        list.push_back(i);
     }
     return;
   }
@@ -607,8 +610,8 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
       const double h = f.h[i];
       const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
       const double s_old = st[CS_STRETCH];
-      const bool th = hot && hot[i] > 0.0;
-      ds[i] = model.break_once(st, hooks.tag(i), e, h, f.k[i], th ? hot[i] : 0.0,
+      const bool th = hot && !std::isnan(hot[i]);
+      ds[i] = model.break_once(st, hooks.tag(i), e, h, f.k[i], th ? hot[i] : NAN,
                                th ? thermal_age[i] : 0.0) - s_old;
       if (!(std::fabs(ds[i]) <= AVALANCHE_CHANGE_MAX * (1.0 + std::fabs(st[CS_STRETCH])))) ++sums[1];
     }

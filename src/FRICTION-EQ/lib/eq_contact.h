@@ -151,13 +151,14 @@ class ContactModel {
 
   // one break of a contact whose effective stretch e reached its
   // threshold; h, K: its field and coupling (0, 0 without interaction).
-  // level > 0: it broke where |e| was level (a thermal break within the
-  // step; the motion since goes into the new contact with crossing
-  // exact), else at its threshold (threshold_now()).  With temperature or
-  // aging the new contact starts a life of age `age`.  Returns the new
+  // e_break finite: it broke thermally within the step where its
+  // effective stretch was e_break (with crossing exact the new contact
+  // re-forms on that side, the motion since, e - e_break, carried, and
+  // its life is `age` old; with crossing step at the end of the step, as
+  // advance()); NaN: at its threshold (threshold_now()).  Returns the new
   // stretch (0 when it detached for good: CS_THRESHOLD < 0).
-  double break_once(double *st, uint64_t tag, double e, double h, double K, double level = 0.0,
-                    double age = 0.0) const;
+  double break_once(double *st, uint64_t tag, double e, double h, double K,
+                    double e_break = NAN, double age = 0.0) const;
 
   // the threshold of a formed contact now: x_s, with aging x_s0 A(age)
   double threshold_now(const double *st) const
@@ -388,10 +389,10 @@ struct AvalancheResult {
 // when the field names them: the others stay below their thresholds.
 // The field names rows of the contacts only (rows[i] and h[i] exist).
 // tol: relative tolerance of the breaking test (see tolerance()).  list,
-// ds: scratch (ds indexed by row).  thermal (by row, or nullptr): > 0
-// for a contact that broke thermally within the step (ContactModel::
-// probe()) at |e| = thermal[i], its new life then of age thermal_age[i]:
-// it breaks in the first round, at that level.
+// ds: scratch (ds indexed by row).  thermal (by row, or nullptr): not
+// NaN for a contact that broke thermally within the step (ContactModel::
+// probe()) where its effective stretch was thermal[i], its new life then
+// of age thermal_age[i]: it breaks in the first round, there.
 AvalancheResult avalanche(const ContactModel &model, double *const *rows, const int *members,
                           int nmembers, double tol, AvalancheHooks &hooks, std::vector<int> &list,
                           std::vector<double> &ds, const double *thermal = nullptr,
