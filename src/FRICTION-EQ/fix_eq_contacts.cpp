@@ -890,12 +890,16 @@ void FixEQContacts::thermal_stage(const feq::AvalancheField &f, double dt)
     tbreak.resize(atom->nmax);
     tage.resize(atom->nmax);
   }
+  const bool hot = model->thermal_model().params().thermal();
   for (const int i : members) {
     double *st = state[i];
     tbreak[i] = NAN;
     tage[i] = 0.0;
     if (!(st[CS_THRESHOLD] > 0.0) || !std::isfinite(eprev[i])) continue;
     const double e1 = st[CS_STRETCH] + f.h[i] / st[CS_STIFFNESS];
+    if (hot ? model->quick_probe<true>(st, eprev[i], e1, dt)
+            : model->quick_probe<false>(st, eprev[i], e1, dt))
+      continue;
     const ContactModel::ThermalProbe r =
         model->probe(st, static_cast<uint64_t>(tag[i]), eprev[i], e1, dt);
     if (!r.broke) continue;

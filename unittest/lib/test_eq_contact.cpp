@@ -1116,6 +1116,38 @@ TEST(Thinning, ProbeAndBreakOnceEqualAdvance)
   }
 }
 
+// probe()'s inline common case, where it applies (a second step, once a
+// first one made the rate bound), is probe() to the bit
+TEST(Thinning, QuickProbeIsProbe)
+{
+  ThermalSpec t = theta_spec(0.1, 2.0, 0.25);
+  t.aging = AgingLaw::LOG;
+  t.beta = 0.05;
+  t.tau_a = 1.0;
+  const ContactModel m =
+      thermal_model(t, true, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"));
+  int quick = 0, slow = 0;
+  for (uint64_t tag = 1; tag <= 4000; ++tag) {
+    std::vector<double> a(m.columns(), 0.0);
+    m.form(a.data(), tag, 0.0);
+    const double e0 = -0.7 + 1.4 * (tag % 11) / 10.0, dt = 0.2 + (tag % 3);
+    if (m.probe(a.data(), tag, 0.0, e0, dt).broke) continue;
+    const double e1 = e0 + 0.01 * dt * (tag % 2 ? 1.0 : -1.0);
+    std::vector<double> b = a, c = a;
+    const ContactModel::ThermalProbe p = m.probe(b.data(), tag, e0, e1, dt);
+    if (m.quick_probe<true>(c.data(), e0, e1, dt)) {
+      ASSERT_FALSE(p.broke) << tag;
+      EXPECT_EQ(c, b) << tag;
+      ++quick;
+    } else {
+      EXPECT_EQ(c, a) << tag;    // untouched
+      ++slow;
+    }
+  }
+  EXPECT_GT(quick, 1000);
+  EXPECT_GT(slow, 100);
+}
+
 // the threshold the avalanche tests is the aged one; break_once() at it
 // carries e - x_s0 A(age) and starts a life of age 0; a delay is refused
 TEST(Thinning, BreakOnceAtTheAgedThreshold)

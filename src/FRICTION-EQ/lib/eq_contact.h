@@ -179,6 +179,25 @@ class ContactModel {
   };
   ThermalProbe probe(double *st, uint64_t tag, double e0, double e1, double dt) const;
 
+  // probe()'s common case inline (the same numbers): e stays below the
+  // lower bound of the threshold and, THERMAL (the model's T > 0), within
+  // the rate bound at both ends (so along the whole step), with no
+  // candidate break within the step: the contact ages by dt.  False (the
+  // row untouched) otherwise
+  template <bool THERMAL> bool quick_probe(double *st, double e0, double e1, double dt) const
+  {
+    const double a = std::fabs(e1);
+    if (!(a < st[CT_XS_LOW])) return false;
+    if (THERMAL) {
+      if (!(a <= st[CT_BOUND_S]) || !(std::fabs(e0) <= st[CT_BOUND_S])) return false;
+      const double dH = st[CT_BOUND_RATE] * dt;
+      if (!(dH < st[CT_BUDGET])) return false;
+      st[CT_BUDGET] -= dH;
+    }
+    st[CT_AGE] += dt;
+    return true;
+  }
+
   // without interaction: every break of one contact within a step, until
   // |s| < x_s - tol; returns the new stretch and adds to nbreaks
   double resolve(double *st, uint64_t tag, double s, double tol, long &nbreaks) const;
