@@ -281,31 +281,12 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
     // attached over [f, 1]: the stretch goes from s_a to s_b, the age from a_a to a_a + h
     // (the end of a whole step: the stretch m itself)
     const double s_b = (f == 0.0 && !waiting0) ? m : s_a + motion * (1.0 - f);
-    const double a_a = st[CT_AGE], xs0 = st[CS_THRESHOLD];
-    double g = 1.0;    // fraction of the piece at which it breaks
-    bool broke = false;
-    // the threshold at the end only where the lower bound does not decide
+    const double a_a = st[CT_AGE];
+    double g = 1.0;         // fraction of the piece at which it breaks
     double xs_end = 0.0;    // > 0: the threshold at the end, not reached
-    if (!(std::fabs(s_b) < st[CT_XS_LOW])) {
-      const double xs_b = xs0 * thermal.factor(a_a + h);
-      const double d_b = std::fabs(s_b) - xs_b;
-      if (!(d_b < 0.0)) {    // crosses its threshold within the piece
-        const double d_a = std::fabs(s_a) - xs0 * thermal.factor(a_a);
-        g = d_a < 0.0 ? d_a / (d_a - d_b) : 0.0;
-        broke = true;
-      } else {
-        xs_end = xs_b;
-      }
-    }
+    bool broke = threshold_crossing(st, s_a, s_b, a_a, h, g, xs_end);
     // a thermal break first, up to the crossing: thinning
-    if (thermal_T && h > 0.0 && g > 0.0) {
-      const double x_g = g == 1.0 ? s_b : s_a + (s_b - s_a) * g;
-      double g_t = 1.0;
-      if (thin(st, tag, s_a, x_g, a_a, h * g, g_t)) {
-        g *= g_t;
-        broke = true;
-      }
-    }
+    if (thermal_break(st, tag, s_a, s_b, a_a, h, g)) broke = true;
     if (!broke) {
       st[CT_AGE] = a_a + h;    // (a_a + dt for a whole step, as step())
       hold(st, s_b);
@@ -354,32 +335,52 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
   }
 }
 
+// a piece in which the stretch goes linearly from s_a to s_b and the age
+// from a_a to a_a + h: true where |s| reaches the aged threshold within it
+// (g: the fraction where; |s| taken linear), else false with xs_end the
+// threshold at the end (0 where the lower bound CT_XS_LOW decides)
+bool ContactModel::threshold_crossing(const double *st, double s_a, double s_b, double a_a,
+                                      double h, double &g, double &xs_end) const
+{
+  if (std::fabs(s_b) < st[CT_XS_LOW]) return false;
+  const double xs0 = st[CS_THRESHOLD];
+  const double xs_b = xs0 * thermal.factor(a_a + h);
+  const double d_b = std::fabs(s_b) - xs_b;
+  if (d_b < 0.0) {
+    xs_end = xs_b;
+    return false;
+  }
+  const double d_a = std::fabs(s_a) - xs0 * thermal.factor(a_a);
+  g = d_a < 0.0 ? d_a / (d_a - d_b) : 0.0;
+  return true;
+}
+
+// a thermal break of the piece within its first fraction g (up to the
+// crossing): thinning; true with g the fraction of the break
+bool ContactModel::thermal_break(double *st, uint64_t tag, double s_a, double s_b, double a_a,
+                                 double h, double &g) const
+{
+  if (!(thermal_T && h > 0.0 && g > 0.0)) return false;
+  const double x_g = g == 1.0 ? s_b : s_a + (s_b - s_a) * g;
+  double g_t = 1.0;
+  if (!thin(st, tag, s_a, x_g, a_a, h * g, g_t)) return false;
+  g *= g_t;
+  return true;
+}
+
 ContactModel::ThermalProbe ContactModel::probe(double *st, uint64_t tag, double e0, double e1,
                                                double dt) const
 {
   ThermalProbe res;
   check_finite(st, tag, e1, false);
-  const double a_a = st[CT_AGE], xs0 = st[CS_THRESHOLD];
+  const double a_a = st[CT_AGE];
   // up to where e crosses the aged threshold (the avalanche breaks it there)
   double g = 1.0, xs_end = 0.0;
-  if (!(std::fabs(e1) < st[CT_XS_LOW])) {
-    const double xs_b = xs0 * thermal.factor(a_a + dt);
-    const double d_b = std::fabs(e1) - xs_b;
-    if (!(d_b < 0.0)) {
-      const double d_a = std::fabs(e0) - xs0 * thermal.factor(a_a);
-      g = d_a < 0.0 ? d_a / (d_a - d_b) : 0.0;
-    } else {
-      xs_end = xs_b;
-    }
-  }
-  if (thermal_T && dt > 0.0 && g > 0.0) {
-    const double x_g = g == 1.0 ? e1 : e0 + (e1 - e0) * g;
-    double g_t = 1.0;
-    if (thin(st, tag, e0, x_g, a_a, dt * g, g_t)) {
-      res.broke = true;
-      res.frac = g * g_t;
-      return res;
-    }
+  threshold_crossing(st, e0, e1, a_a, dt, g, xs_end);
+  if (thermal_break(st, tag, e0, e1, a_a, dt, g)) {
+    res.broke = true;
+    res.frac = g;
+    return res;
   }
   st[CT_AGE] = a_a + dt;
   if (xs_end > 0.0) raise_xs_low(st, xs_end);

@@ -353,6 +353,12 @@ class ContactModel {
   double level(double x, double w, double xs) const;
   // the threshold's lower bound raised to xs (and the rate bound with it)
   void raise_xs_low(double *st, double xs) const;
+  // a piece of a step (see advance()): the crossing of the aged threshold,
+  // and a thermal break before it
+  bool threshold_crossing(const double *st, double s_a, double s_b, double a_a, double h,
+                          double &g, double &xs_end) const;
+  bool thermal_break(double *st, uint64_t tag, double s_a, double s_b, double a_a, double h,
+                     double &g) const;
   // the draws of candidate k of the current life: acceptance uniform, next budget
   void candidate_draw(uint64_t tag, uint64_t life, double k, double &accept, double &next) const;
   void check_finite(const double *st, uint64_t tag, double m, bool waiting) const;
