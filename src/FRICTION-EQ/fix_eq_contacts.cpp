@@ -815,9 +815,12 @@ void FixEQContacts::record_detached()
 void FixEQContacts::field_step(bool allow_breaks, double dt)
 {
   EQElasticField *elastic = field_now();
+  // at T > 0 or with aging: a step probes the thermal breaks; the set-up
+  // of a run (dt = 0) makes the rows valid for this run's parameters
   const bool hot = model->thermal_active() && allow_breaks;
-  if (hot && dt == 0.0) reform_waiting();
-  if (hot && dt > 0.0) save_effective();
+  const bool probed = hot && dt > 0.0, hot_setup = hot && dt == 0.0;
+  if (hot_setup) reform_waiting();
+  if (probed) save_effective();
   stretches();
   local_sum[SUM_BREAKS] = 0.0;
   rounds_last = 0;
@@ -827,12 +830,10 @@ void FixEQContacts::field_step(bool allow_breaks, double dt)
     Hooks hooks(this, elastic);
     AvalancheResult res;
     try {
-      // at T > 0 or with aging: the thermal breaks of the step, then the
-      // avalanche (a new run may come with other parameters: new_run())
-      if (hot && dt > 0.0) thermal_stage(hooks.field(), dt);
-      if (hot && dt == 0.0)
+      // the thermal breaks of the step, then the avalanche
+      if (probed) thermal_stage(hooks.field(), dt);
+      if (hot_setup)
         for (const int i : members) model->new_run(state[i]);
-      const bool probed = hot && dt > 0.0;
       res = avalanche(*model, state, members.data(), static_cast<int>(members.size()), break_tol,
                       hooks, blist, dsv, probed ? tbreak.data() : nullptr,
                       probed ? tage.data() : nullptr);
