@@ -45,6 +45,34 @@ TEST(Draw, DeterministicAndKeyed)
   EXPECT_NE(a.u, draw(42, uint64_t(7) | (uint64_t(1) << 32), 3, STREAM_THRESHOLD).u);
 }
 
+// draw_pair(): its first uniform is draw()'s to the bit; its second is
+// uniform and uncorrelated with the first (a contact's threshold and its
+// life's hazard budget come from one block)
+TEST(Draw, PairFirstIsDrawSecondIndependent)
+{
+  const int n = 200000;
+  double m2 = 0.0, c12 = 0.0, cc[2][2] = {{0, 0}, {0, 0}};
+  for (int i = 0; i < n; ++i) {
+    const UniformPair p = draw_pair(4711, 1 + i / 100, i % 100, STREAM_THRESHOLD);
+    const Uniform d = draw(4711, 1 + i / 100, i % 100, STREAM_THRESHOLD);
+    ASSERT_EQ(p.first.u, d.u);
+    ASSERT_EQ(p.first.one_minus_u, d.one_minus_u);
+    ASSERT_EQ(p.second.u + p.second.one_minus_u, 1.0);
+    m2 += p.second.u;
+    c12 += (p.first.u - 0.5) * (p.second.u - 0.5);
+    cc[p.first.u < 0.5][p.second.u < 0.5] += 1.0;
+  }
+  // means and the covariance within 5 standard errors (Var u = 1/12,
+  // Var of a product of two independent centred uniforms = 1/144)
+  EXPECT_NEAR(m2 / n, 0.5, 5.0 * std::sqrt(1.0 / 12.0 / n));
+  EXPECT_NEAR(c12 / n, 0.0, 5.0 * std::sqrt(1.0 / 144.0 / n));
+  const double m = n / 4.0;
+  double chi2 = 0.0;
+  for (auto &row : cc)
+    for (double v : row) chi2 += (v - m) * (v - m) / m;
+  EXPECT_LT(chi2, 20.0);    // p ~ 1e-4 for 3 dof
+}
+
 // Kolmogorov-Smirnov test of uniformity over (tag, event) pairs, and of
 // independence of neighbouring keys (pairs u_i, u_{i+1} in quadrants).
 TEST(Draw, UniformAndIndependent)

@@ -98,8 +98,7 @@ void ContactModel::form(double *st, uint64_t tag, double xu) const
   const double k = stiffness_const
       ? k0
       : k0 * stiffness.dist->sample(draw(seed, tag, event, STREAM_STIFFNESS + off));
-  const double th =
-      threshold.dist->sample_above(std::fabs(s0), draw(seed, tag, event, STREAM_THRESHOLD + off));
+  const double th = draw_threshold(st, tag, event, off, s0);
   if (!(th > 0.0))
     throw BreakError("initial stretch " + num(s0) + " of contact " + std::to_string(tag) +
                      " is not below the largest breaking threshold");
@@ -110,13 +109,23 @@ void ContactModel::form(double *st, uint64_t tag, double xu) const
   st[CS_STIFFNESS] = k;
   st[CS_ANCHOR] = xu - s0;
   st[CS_FIELD] = 0.0;
-  if (thermal_on) start_life(st, tag, event, off);
+  if (thermal_on) start_life(st, off);
 }
 
-void ContactModel::start_life(double *st, uint64_t tag, uint64_t event, uint32_t off) const
+double ContactModel::draw_threshold(double *st, uint64_t tag, uint64_t event, uint32_t off,
+                                    double r) const
 {
+  const uint32_t stream = STREAM_THRESHOLD + off;
+  if (!thermal_on) return threshold.dist->sample_above(std::fabs(r), draw(seed, tag, event, stream));
+  // the life's budget from the same Philox block (one block per life):
   // drawn at T = 0 too (never used there), so that a restart at T > 0 finds it
-  st[CT_BUDGET] = exponential(draw(seed, tag, event, STREAM_BUDGET + off));
+  const UniformPair u = draw_pair(seed, tag, event, stream);
+  st[CT_BUDGET] = exponential(u.second);
+  return threshold.dist->sample_above(std::fabs(r), u.first);
+}
+
+void ContactModel::start_life(double *st, uint32_t off) const
+{
   st[CT_AGE] = 0.0;
   st[CT_WAIT] = 0.0;
   st[CT_PENDING] = 0.0;
@@ -174,8 +183,7 @@ double ContactModel::renew(double *st, uint64_t tag, uint64_t event) const
   const double r = draw_reform(tag, event, STREAM_REFORM);
   if (!stiffness_const)
     st[CS_STIFFNESS] = k0 * stiffness.dist->sample(draw(seed, tag, event, STREAM_STIFFNESS));
-  const double th =
-      threshold.dist->sample_above(std::fabs(r), draw(seed, tag, event, STREAM_THRESHOLD));
+  const double th = draw_threshold(st, tag, event, 0u, r);
   if (!(th > 0.0))    // only if the survival function underflows at |r|
     throw BreakError("contact " + std::to_string(tag) + " re-formed with stretch " + num(r) +
                      ", where no breaking threshold of " + threshold.text +
@@ -215,7 +223,7 @@ double ContactModel::break_once(double *st, uint64_t tag, double e, double h, do
     return 0.0;
   }
   if (thermal_on) {
-    start_life(st, tag, event, 0u);
+    start_life(st, 0u);
     if (hot) st[CT_AGE] = age;
   }
   const double target = sign * r + over;    // new force / k
@@ -318,7 +326,7 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
       st[CT_BOUND_S] = NO_BOUND;
       return res;
     }
-    start_life(st, tag, event, 0u);
+    start_life(st, 0u);
     const ThermalSpec &sp = thermal.params();
     double wait = 0.0;
     if (sp.delay == DelayKind::FIXED) wait = sp.tau;

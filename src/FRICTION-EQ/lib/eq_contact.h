@@ -338,8 +338,9 @@ class ContactModel {
 
   mutable SamplerCounts counts;
 
-  // a new life of a contact with temperature, aging or delays: budget, age 0
-  void start_life(double *st, uint64_t tag, uint64_t event, uint32_t off) const;
+  // a new life of a contact with temperature, aging or delays (its budget
+  // drawn with its threshold, draw_threshold()): age 0, no bound
+  void start_life(double *st, uint32_t off) const;
   // the candidates within a piece of duration h in which the stretch goes
   // linearly from x0 to x1 and the age from a0: true, with the fraction of
   // the piece at which one was accepted, or false (budget used)
@@ -364,6 +365,10 @@ class ContactModel {
   void check_finite(const double *st, uint64_t tag, double m, bool waiting) const;
 
   double draw_reform(uint64_t tag, uint64_t event, uint32_t stream) const;
+  // the threshold above |r| of the life after event `event` (stream
+  // STREAM_THRESHOLD + off); with temperature, aging or delays also the
+  // life's hazard budget (CT_BUDGET), from the other half of the same block
+  double draw_threshold(double *st, uint64_t tag, uint64_t event, uint32_t off, double r) const;
   // new threshold (and stiffness) after event `event`; returns the re-forming stretch r
   double renew(double *st, uint64_t tag, uint64_t event) const;
 };

@@ -65,7 +65,8 @@ enum Stream : uint32_t {
   STREAM_THRESHOLD = 0,
   STREAM_REFORM = 1,
   STREAM_STIFFNESS = 2,
-  STREAM_BUDGET = 3,    // the hazard a contact life can take (thermal breaking)
+  STREAM_BUDGET = 3,    // the hazard a life can take (fix eq/substrate's blocks; a
+                        // contact's comes with its threshold: draw_pair())
   STREAM_DELAY = 4,     // the delay before a broken contact re-forms
   STREAM_REENTRY = 8
 };
@@ -91,15 +92,33 @@ inline double exponential(const Uniform &u)
   return -std::log1p(-u.one_minus_u);
 }
 
+// the Philox block of (seed, tag, event, stream)
+inline Philox4x32 draw_block(uint64_t seed, uint64_t tag, uint64_t event, uint32_t stream)
+{
+  return philox4x32({uint32_t(tag), uint32_t(tag >> 32), uint32_t(event),
+                     (uint32_t(event >> 32) << 8) | (stream & 0xffu)},
+                    {uint32_t(seed), uint32_t(seed >> 32)});
+}
+
 // The draw of one contact: seed (> 0), global atom tag, event counter
 // (number of earlier breaks of that contact) and stream.
 inline Uniform draw(uint64_t seed, uint64_t tag, uint64_t event, uint32_t stream)
 {
-  const Philox4x32 out = philox4x32(
-      {uint32_t(tag), uint32_t(tag >> 32), uint32_t(event),
-       (uint32_t(event >> 32) << 8) | (stream & 0xffu)},
-      {uint32_t(seed), uint32_t(seed >> 32)});
+  const Philox4x32 out = draw_block(seed, tag, event, stream);
   return uniform_from_bits((uint64_t(out[0]) << 32) | out[1]);
+}
+
+// two uniforms from one Philox call: the first is draw()'s (the same
+// bits), the second from the call's other 64 bits, independent of it
+struct UniformPair {
+  Uniform first;
+  Uniform second;
+};
+inline UniformPair draw_pair(uint64_t seed, uint64_t tag, uint64_t event, uint32_t stream)
+{
+  const Philox4x32 out = draw_block(seed, tag, event, stream);
+  return {uniform_from_bits((uint64_t(out[0]) << 32) | out[1]),
+          uniform_from_bits((uint64_t(out[2]) << 32) | out[3])};
 }
 
 // The draws of candidate k of a contact's life (thermal breaking by
