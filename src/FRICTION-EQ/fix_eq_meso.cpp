@@ -53,6 +53,7 @@
 #include "eq_meso_thermal.h"
 #include "eq_record.h"
 #include "eq_thermal.h"
+#include "eq_thermal_steady.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -263,11 +264,14 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
     error->all(FLERR, "Fix eq/meso labels: needs thermal with T > 0, aging or delay (the "
                       "threshold panels of the thermal kernel)");
   // without screening eps = 0 and the default grid serves both kernels;
-  // with it the thermal kernel's eps0 depends on the velocity
-  if (thermal_kernel && screen_flag && a.du == 0.0)
-    error->all(FLERR, "Fix eq/meso {}: with screen needs the grid keyword ({} the screened "
-                      "thresholds x_s/(1 + eps0) depend on the velocity: choose du <= sd/(4 (1 + "
-                      "eps0)), sd the thresholds' standard deviation, eps0 the steady load factor)",
+  // with it the thermal kernel's eps0 depends on the velocity: the
+  // default grid needs the velocity of drive (screened_grid())
+  if (thermal_kernel && screen_flag && a.du == 0.0 && !(drive_flag && a.reform.dist))
+    error->all(FLERR, "Fix eq/meso {}: with screen needs the grid keyword, or drive with contacts "
+                      "that re-form ({} the screened thresholds x_s/(1 + eps0) depend on the "
+                      "velocity: the default grid is made for the steady eps0 at the drive's "
+                      "velocity; else choose du <= sd/(4 (1 + eps0)), sd the thresholds' standard "
+                      "deviation, eps0 the steady load factor)",
                hot ? "thermal" : aged ? "aging" : "delay",
                hot ? "at T > 0" : aged ? "with threshold aging" : "with a formation delay");
 }
@@ -319,6 +323,13 @@ void FixEQMeso::make_model(Args &a)
       thermal_kernel ? a.thermal.finish(force->boltz, a.threshold.dist->mean()) : feq::ThermalSpec();
   const int labels = a.labels ? a.labels : feq::MESO_THERMAL_LABELS;
   fixed_tau = spec.delay == feq::DelayKind::FIXED ? spec.tau : 0.0;
+  if (thermal_kernel && screen_flag && grid_default) {
+    auto slider = std::make_shared<feq::ThermalSlider>();
+    slider->Pc = a.threshold.dist;
+    slider->spec = spec;
+    slider->reform = a.reform.dist != nullptr;
+    screen_slider = slider;
+  }
   if (grid_default) a.du = feq::meso_default_grid(*a.threshold.dist);
   try {
     if (grid_default && !(a.du > 0.0)) throw feq::GridError("grid: zero width");
@@ -844,18 +855,49 @@ void FixEQMeso::choose_grid()
   partners();
   gather_columns(false);
   lattice_sums(false, true);
-  const double screened = feq::meso_default_grid(*thresholds, pi0_max);
+  std::string how;
+  const double screened = screened_grid(how);
   const double want = std::max(screened, model->min_grid());
   if (!(want > 0.0) || want == model->grid()) return;
   set_grid(want);
   if (comm->me == 0)
     utils::logmesg(lmp, "fix eq/meso: grid {:.17g} for the screened thresholds (Pi0 = {:.6g}: {} "
-                        "of their standard deviation sd (1 - Pi0)); {} doubles per block\n",
+                        "of their standard deviation {}); {} doubles per block\n",
                    model->grid(), pi0_max,
                    want > screened ? std::string("the finest grid within the state size limit, "
                                                  "coarser than 1/8")
                                    : std::string("1/8"),
-                   M_HEAD + model->width());
+                   how, M_HEAD + model->width());
+}
+
+// 1/8 of the screened thresholds' standard deviation sd/(1 + eps0), eps0
+// the steady load factor of a uniform lattice with the largest Pi0: the
+// athermal Pi0/(1 - Pi0), sd (1 - Pi0); with the thermal kernel the root
+// of eps0 = Pi0 x_c Gamma(eps0) at the drive's velocity (lib
+// screened_load_factor(): thermal breaks, aging and delays make it
+// depend on the velocity).  how: the formula, for the log
+double FixEQMeso::screened_grid(std::string &how)
+{
+  if (!screen_slider) {
+    how = "sd (1 - Pi0)";
+    return feq::meso_default_grid(*thresholds, pi0_max);
+  }
+  const double v = std::fabs(vstage);
+  if (!(v > 0.0))
+    error->all(FLERR, "Fix {} eq/meso drive: the default grid with screen at T > 0, with aging or "
+                      "with a delay needs a velocity v != 0 at the first run (it is made for the "
+                      "steady load factor at v); set v, or the grid keyword", id);
+  feq::ThermalSlider s = *screen_slider;
+  s.v = v;
+  double eps0 = 0.0;
+  try {
+    eps0 = feq::screened_load_factor(s, pi0_max);
+  } catch (const feq::SpecError &e) {
+    error->all(FLERR, "Fix {} eq/meso screen: {}; set the grid keyword", id, e.what());
+  }
+  how = fmt::format("sd/(1 + eps0), eps0 = {:.6g} the steady load factor at the drive's velocity "
+                    "{:.6g}", eps0, v);
+  return feq::MESO_GRID_DEFAULT_SD * threshold_sd / (1.0 + eps0);
 }
 
 // every set-up block holds the state of a block just defined (at X = 0)

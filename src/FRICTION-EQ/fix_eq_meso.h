@@ -50,6 +50,7 @@ FixStyle(eq/meso,FixEQMeso);
 
 namespace feq {
 class BlockModel;
+struct ThermalSlider;
 }
 
 namespace LAMMPS_NS {
@@ -115,6 +116,9 @@ class FixEQMeso : public FixEQBlocks {
   double pi0_max;      // largest sum_m Pi_mn over the blocks at the last list build
   double threshold_sd;    // standard deviation of the thresholds (the grid's scale)
   feq::DistributionPtr thresholds;
+  // the thermal kernel's contacts (spec, thresholds, re-forming) for its
+  // default grid with screen (screened_grid()); null otherwise
+  std::shared_ptr<const feq::ThermalSlider> screen_slider;
   int grid_warned;     // the warning on a grid too coarse for the screened thresholds was given
   // the grid: the user's (grid keyword), or the default, chosen for the
   // screened thresholds at the setup of every run while every block is
@@ -135,6 +139,7 @@ class FixEQMeso : public FixEQBlocks {
   void check_thermal_grid(int i, double eps);
   void check_window();
   void choose_grid();
+  double screened_grid(std::string &how);
   void set_grid(double du);
   bool all_fresh();
   void gather_columns(bool rates);

@@ -223,9 +223,14 @@ TEST_F(EQMesoErrors, Thermal)
     fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0");
     command("unfix m");
   });
-  TEST_FAILURE(".*ERROR: Fix eq/meso thermal: with screen needs the grid keyword \\(at T > 0 the "
-               "screened thresholds.*",
+  TEST_FAILURE(".*ERROR: Fix eq/meso thermal: with screen needs the grid keyword, or drive with "
+               "contacts that re-form \\(at T > 0 the screened thresholds.*",
                fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0 screen 0.01 1.0 1.01"););
+  // with drive the default grid is made at the first run, for the drive's velocity
+  HIDE_OUTPUT([&] {
+    fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0 screen 0.01 1.0 1.01 drive 1.0 1e-3");
+    command("unfix m");
+  });
   TEST_FAILURE(".*ERROR: Fix eq/meso thermal omega: must be > 0 \\(got 0\\).*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 0"););
   TEST_FAILURE(".*ERROR: Fix eq/meso thermal T: expected a number, got 'hot'.*",
@@ -300,7 +305,8 @@ TEST_F(EQMesoErrors, Thermal)
   TEST_FAILURE(".*ERROR: Fix eq/meso delay: unknown value 'gamma'; allowed: none, fixed, exp.*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay gamma 1"););
   // at T = 0 a delay takes the thermal kernel (theta = 0), which needs a grid
-  TEST_FAILURE(".*ERROR: Fix eq/meso delay: with screen needs the grid keyword \\(with a "
+  TEST_FAILURE(".*ERROR: Fix eq/meso delay: with screen needs the grid keyword, or drive with "
+               "contacts that re-form \\(with a "
                "formation delay.*",
                fix(std::string("100 1.0 ") + T + " delay exp 1 screen 0.01 1.0 1.01"););
   HIDE_OUTPUT([&] {
@@ -320,7 +326,8 @@ TEST_F(EQMesoErrors, Thermal)
     command("unfix m");
   });
   // at T = 0: aging takes the thermal kernel; rest alone changes nothing
-  TEST_FAILURE(".*ERROR: Fix eq/meso aging: with screen needs the grid keyword \\(with "
+  TEST_FAILURE(".*ERROR: Fix eq/meso aging: with screen needs the grid keyword, or drive with "
+               "contacts that re-form \\(with "
                "threshold aging.*",
                fix(std::string("100 1.0 ") + T + " screen 0.01 1.0 1.01 aging log 0.1 1"););
   HIDE_OUTPUT([&] {

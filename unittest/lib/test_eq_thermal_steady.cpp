@@ -129,6 +129,48 @@ TEST(ThermalSteady, DelayClosedForm)
     }
 }
 
+// The screened load factor (fix eq/meso's default grid with screen at
+// T > 0): at T = 0 Gamma_s = 1/x_c and eps0 = Pi0/(1 - Pi0); with a delay
+// Gamma_s = 1/(x_c + w tau), so w0 = (1 + eps0) v solves
+// tau w^2 + (1 - v tau - Pi0) w - v = 0 (x_c = 1)
+TEST(ThermalSteady, ScreenedLoadFactorClosedForms)
+{
+  for (double pi0 : {0.0, 0.3, 0.6, 0.93, 0.97})
+    for (double v : {1e-6, 1e-2, 3.0})
+      EXPECT_NEAR(screened_load_factor(uniform_slider(0.0, v), pi0), pi0 / (1.0 - pi0),
+                  1e-12 * (1.0 + pi0 / (1.0 - pi0)))
+          << pi0 << " " << v;
+  for (double pi0 : {0.3, 0.9})
+    for (double vtau : {0.1, 2.5}) {
+      ThermalSlider s = uniform_slider(0.0, 1e-2);
+      delay(s, DelayKind::EXPONENTIAL, vtau / s.v);
+      const double tau = s.spec.tau, v = s.v, b = 1.0 - v * tau - pi0;
+      const double w0 = (-b + std::sqrt(b * b + 4.0 * tau * v)) / (2.0 * tau);
+      EXPECT_NEAR(screened_load_factor(s, pi0), w0 / v - 1.0, 1e-9 * (w0 / v)) << pi0 << vtau;
+    }
+}
+
+// at T > 0 eps0 solves its equation with Gamma_s of the steady state,
+// lies above the athermal Pi0/(1 - Pi0) (thermal breaks come earlier: more
+// per unit displacement) and grows as the velocity falls
+TEST(ThermalSteady, ScreenedLoadFactorThermal)
+{
+  const double pi0 = 0.6;
+  double last = 0.0;
+  for (double v : {1e-1, 1e-2, 1e-3, 1e-4}) {
+    ThermalSlider s = uniform_slider(0.05, v);
+    const double eps = screened_load_factor(s, pi0);
+    ThermalSlider w = s;
+    w.v = (1.0 + eps) * v;
+    EXPECT_NEAR(eps, pi0 * (1.0 + eps) * thermal_steady_state(w).Gamma, 1e-9 * (1.0 + eps)) << v;
+    EXPECT_GT(eps, pi0 / (1.0 - pi0) * 1.01) << v;
+    EXPECT_GT(eps, last) << v;
+    last = eps;
+  }
+  EXPECT_THROW(screened_load_factor(uniform_slider(0.05, 1e-2), 1.0), SpecError);
+  EXPECT_THROW(screened_load_factor(uniform_slider(0.05, 1e-2), -0.1), SpecError);
+}
+
 // one threshold value with aging: every contact breaks at x* = x_s0 A(x*/v),
 // F_k = x*/2
 TEST(ThermalSteady, OneThresholdWithAging)

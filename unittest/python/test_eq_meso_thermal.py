@@ -24,6 +24,7 @@ references:
 """
 import importlib.util
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -265,6 +266,75 @@ def test_default_grid_without_screening(tmp_path, extra):
     assert err < 5.0 * du * du, (err, du)
 
 
+DRIVE = Path(__file__).resolve().parent / "inputs" / "in.meso-thermal-drive"
+
+
+def drive_eps(log):
+    """<eps> at the thermo steps of in.meso-thermal-drive."""
+    rows = []
+    for line in log.split("Step")[-1].splitlines()[1:]:
+        f = line.split()
+        if len(f) != 3:
+            break
+        rows.append([float(x) for x in f])
+    return np.array(rows)[:, 1]
+
+
+def test_default_grid_with_screening_at_the_drive_velocity(tmp_path):
+    """With screen at T > 0 and drive K v, no grid keyword: the default grid
+    is 1/8 of the screened thresholds' sd/(1 + eps0), eps0 the root of
+    eps0 = Pi0 x_c Gamma(eps0) at v.  A ring of 12 blocks (Pi0 = 0.6,
+    theta = 0.05, v = 1e-2, all sliding at v, steps dX = du/2 in x_c)
+    - logs eps0 equal to eqtools.thermal_screening.eps0 (an independent
+      quadrature of the continuous model) to 1e-9 and the grid from it;
+    - slides to that eps0: the steady <eps>, extrapolated from X = 12, 14,
+      16 x_c (geometric relaxation, Aitken), within the kernel's bound
+      5 du^2 relative, du = (1 + eps0) du_grid/x_c = sd/8 the grid of the
+      effective stretches (the athermal eps0 = Pi0/(1 - Pi0) = 1.5 is 40 %
+      off);
+    - 2 ranks choose the same grid (the run to X = 2 to the last digit)."""
+    v, pi0, theta, xc = 1e-2, 0.6, 0.05, 1e-4
+    e0 = ts.eps0(v, theta=theta, Pi0=pi0)
+    sd = 0.5 / math.sqrt(12.0)
+    du_grid = 0.125 * sd * xc / (1.0 + e0)
+    log = eqtools.run_lammps(DRIVE, {"v": v, "pi0": pi0, "T": theta, "Xmax": 16.0,
+                                     "dX": 0.5 * du_grid / xc}, cwd=tmp_path)
+    m = re.search(r"fix eq/meso: grid (\S+) for the screened thresholds .*eps0 = (\S+) the steady "
+                  r"load factor at the drive's velocity", log)
+    assert m, log[-3000:]
+    grid, eps_logged = float(m.group(1)), float(m.group(2))
+    assert abs(eps_logged - e0) < 1e-5 * e0    # (printed to 6 digits)
+    assert abs(grid - du_grid) < 1e-9 * du_grid, (grid, du_grid)
+    eps = drive_eps(log)
+    assert len(eps) == 9, eps
+    a, b, c = eps[-3:]
+    steady = c - (c - b) ** 2 / ((c - b) - (b - a))
+    du = 0.125 * sd
+    assert abs(steady - e0) < 5.0 * du * du * (1.0 + e0), (steady, e0)
+    assert abs(steady - pi0 / (1.0 - pi0)) > 0.3 * e0
+    ends = []
+    for n in (1, 2):
+        d = tmp_path / f"np{n}"
+        d.mkdir()
+        ends.append(eqtools.run_lammps(DRIVE, {"Xmax": 2.0, "dX": 0.5 * du_grid / xc}, nprocs=n,
+                                       cwd=d).split("EPS_END")[-1].split()[0])
+    assert ends[0] == ends[1], ends
+
+
+def test_default_grid_with_screening_needs_a_velocity(tmp_path):
+    """drive with v = 0 at the first run: an error naming drive (the
+    default grid is made for the steady state at v); fix_modify velocity
+    before the run gives the grid of that velocity."""
+    log = eqtools.run_lammps(DRIVE, {"vdrive": 0.0, "Xmax": 0.01}, cwd=tmp_path, check=False)
+    assert "eq/meso drive: the default grid with screen at T > 0" in log, log[-2000:]
+    inp = tmp_path / "in.later"
+    inp.write_text(DRIVE.read_text().replace(
+        "velocity        all", "fix_modify      m velocity $(v_v*v_xc)\nvelocity        all"))
+    log = eqtools.run_lammps(inp, {"vdrive": 0.0, "Xmax": 0.01}, cwd=tmp_path)
+    assert re.search(r"eps0 = 2\.445\d* the steady load factor at the drive's velocity 1e-06", log), \
+        log[-3000:]
+
+
 # ---------------------------------------------------------- screening length
 # measured: at cells = 4 (du = sd/(4 (1 + eps0))) and dX = du/2 the fitted
 # length is 0.3-0.4 % below the lattice's; with dX = du 1.3 %: the step and
@@ -372,7 +442,10 @@ FIX = "fix m all eq/meso 100 1.0 threshold uniform 0.75 1.25 "
 
 @pytest.mark.parametrize("args,needle", [
     ("thermal 0.05 1.0 1.0 screen 0.01 1.0 1.01",
-     "Fix eq/meso thermal: with screen needs the grid keyword"),
+     "Fix eq/meso thermal: with screen needs the grid keyword, or drive"),
+    ("thermal 0.05 1.0 1.0 screen 0.01 1.0 1.01 drive 1.0 1e-3 reform none",
+     "Fix eq/meso thermal: with screen needs the grid keyword, or drive with contacts that "
+     "re-form"),
     ("grid 0.01 thermal -1 1.0 1.0", "Fix eq/meso thermal T: must be >= 0"),
     ("grid 0.01 thermal 0.05 0.0 1.0", "Fix eq/meso thermal eps_a: must be > 0"),
     ("grid 0.01 thermal 0.05 1.0 1.0 barrier -1 0", "Fix eq/meso barrier p: must be >= 0"),

@@ -21,6 +21,7 @@
 ------------------------------------------------------------------------- */
 
 #include "eq_thermal_steady.h"
+#include "eq_text.h"
 
 #include <algorithm>
 #include <array>
@@ -430,6 +431,35 @@ ThermalSteady thermal_steady_state(const ThermalSlider &s)
   out.F = LM[1] / cycle;
   out.attached = LM[0] / cycle;
   return out;
+}
+
+double screened_load_factor(const ThermalSlider &s, double pi0)
+{
+  if (!(pi0 >= 0.0 && pi0 < 1.0))
+    throw SpecError("screened load factor: Pi0 must be in [0, 1), got " + format_number(pi0, 6));
+  if (pi0 == 0.0) return 0.0;
+  const double xc = s.Pc->mean();
+  auto h = [&](double lw) {
+    ThermalSlider t = s;
+    t.v = std::exp(lw);
+    return 1.0 - s.v / t.v - pi0 * xc * thermal_steady_state(t).Gamma;
+  };
+  const double lv = std::log(s.v);
+  double a = lv, b = lv + 1.0;
+  while (!(h(b) > 0.0)) {
+    a = b;
+    b += 1.0;
+    if (b - lv > 60.0)
+      throw SpecError("screened load factor: no uniform screened state at velocity " + format_number(s.v, 6) +
+                      " (Pi0 x_c Gamma_s stays >= 1 - v/w up to w = e^60 v)");
+  }
+  for (int it = 0; it < 200 && b - a > 4e-16 * std::max(1.0, std::fabs(b)); ++it) {
+    const double c = 0.5 * (a + b);
+    if (!(c > a && c < b)) break;
+    if (h(c) > 0.0) b = c;
+    else a = c;
+  }
+  return std::exp(0.5 * (a + b) - lv) - 1.0;
 }
 
 double kinetic_slope(const ThermalSlider &s)

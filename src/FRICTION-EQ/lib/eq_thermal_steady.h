@@ -142,6 +142,17 @@ struct KineticPoint {
 // n velocities log-spaced on [vlo, vhi] (n = 1: vlo)
 std::vector<KineticPoint> kinetic_table(const ThermalSlider &s, double vlo, double vhi, int n);
 
+// The uniform load factor eps0 of screened blocks in steady sliding at
+// s.v (fix eq/meso; spec note (e)): eps0 = Pi0 x_c Gamma(eps0), where
+// Gamma(eps) = r((1 + eps) v)/v, r(w) = w Gamma_s(w) the breaks per
+// contact and unit time of contacts loaded at w and x_c the mean
+// threshold.  Solved for w0 = (1 + eps0) v as the smallest root above v
+// of h(w) = 1 - v/w - Pi0 x_c Gamma_s(w) (h(v) < 0): bracketed by steps of
+// 1 in ln w, then bisected in ln w to rounding.  At T = 0 without aging
+// or delay Gamma_s = 1/x_c and eps0 = Pi0/(1 - Pi0).  Throws SpecError
+// where h stays <= 0 up to w = e^60 v (no uniform screened state).
+double screened_load_factor(const ThermalSlider &s, double pi0);
+
 // A piecewise Chebyshev interpolant (degree 16, points of the second
 // kind, barycentric evaluation) of a function on contiguous pieces.
 class PiecewiseChebyshev {
