@@ -265,15 +265,10 @@ void FixEQMeso::parse(int narg, char **arg, Args &a)
                       "threshold panels of the thermal kernel)");
   // without screening eps = 0 and the default grid serves both kernels;
   // with it the thermal kernel's eps0 depends on the velocity: the
-  // default grid needs the velocity of drive (screened_grid())
-  if (thermal_kernel && screen_flag && a.du == 0.0 && !(drive_flag && a.reform.dist))
-    error->all(FLERR, "Fix eq/meso {}: with screen needs the grid keyword, or drive with contacts "
-                      "that re-form ({} the screened thresholds x_s/(1 + eps0) depend on the "
-                      "velocity: the default grid is made for the steady eps0 at the drive's "
-                      "velocity; else choose du <= sd/(4 (1 + eps0)), sd the thresholds' standard "
-                      "deviation, eps0 the steady load factor)",
-               hot ? "thermal" : aged ? "aging" : "delay",
-               hot ? "at T > 0" : aged ? "with threshold aging" : "with a formation delay");
+  // default grid needs the velocity of drive (screened_grid(), at the set-up
+  // of a run while the blocks are fresh: a restart file may bring the grid)
+  thermal_keyword = hot ? "thermal" : aged ? "aging" : "delay";
+  thermal_cause = hot ? "at T > 0" : aged ? "with threshold aging" : "with a formation delay";
 }
 
 // screen kappa lambda_c rcut
@@ -329,6 +324,11 @@ void FixEQMeso::make_model(Args &a)
     slider->spec = spec;
     slider->reform = a.reform.dist != nullptr;
     screen_slider = slider;
+    // (a restart file brings its grid; fresh blocks need drive: screened_grid())
+    if (comm->me == 0 && !(drive_flag && slider->reform))
+      utils::logmesg(lmp, "fix eq/meso: no grid keyword with screen and the thermal kernel: a run "
+                          "with fresh blocks needs drive with contacts that re-form, or a "
+                          "restart file's grid\n");
   }
   if (grid_default) a.du = feq::meso_default_grid(*a.threshold.dist);
   try {
@@ -774,7 +774,8 @@ double FixEQMeso::lattice_sums(bool eps_update, bool rebuilt)
 
 // with screening the thresholds that matter are x_s/(1 + eps), narrower by
 // 1 + eps0 = 1/(1 - Pi0) in the steady state: a grid that resolves them
-// at T > 0 the grid is the user's and eps0 grows as 1/v: a load factor
+// at T > 0 the grid is the user's or made for eps0 at the drive's velocity
+// (screened_grid()), and eps0 grows as 1/v: a load factor
 // that makes (1 + eps) du coarser than a quarter of the thresholds' sd is
 // reported once per rank (the kernel stops beyond eps_valid())
 void FixEQMeso::check_thermal_grid(int i, double eps)
@@ -794,7 +795,8 @@ void FixEQMeso::check_thermal_grid(int i, double eps)
 // why the fix is on it and the grid the default would choose
 void FixEQMeso::check_screened_grid()
 {
-  // with the thermal kernel eps0 depends on the velocity: the grid is the user's (doc)
+  // with the thermal kernel eps0 depends on the velocity (the blocks' own
+  // load factors are checked, check_thermal_grid())
   if (thermal_kernel) return;
   const double screened_sd = threshold_sd * (1.0 - pi0_max);
   if (grid_warned || !(model->grid() > feq::MESO_GRID_SD_FRACTION * screened_sd)) return;
@@ -860,6 +862,12 @@ void FixEQMeso::choose_grid()
   const double want = std::max(screened, model->min_grid());
   if (!(want > 0.0) || want == model->grid()) return;
   set_grid(want);
+  if (screen_slider && want > screened && comm->me == 0)
+    error->warning(FLERR, "Fix {} eq/meso grid: the default grid for the screened thresholds "
+                          "would be {:.6g} ({}), finer than a block's state allows; grid {:.6g} "
+                          "resolves them with {:.3g} cells per standard deviation: steady eps and "
+                          "F lose accuracy (set a larger velocity, or fewer labels)",
+                   id, screened, how, want, screened / want * 8.0);
   if (comm->me == 0)
     utils::logmesg(lmp, "fix eq/meso: grid {:.17g} for the screened thresholds (Pi0 = {:.6g}: {} "
                         "of their standard deviation {}); {} doubles per block\n",
@@ -878,15 +886,29 @@ void FixEQMeso::choose_grid()
 // depend on the velocity).  how: the formula, for the log
 double FixEQMeso::screened_grid(std::string &how)
 {
-  if (!screen_slider) {
+  if (!screen_slider || pi0_max == 0.0) {
     how = "sd (1 - Pi0)";
     return feq::meso_default_grid(*thresholds, pi0_max);
   }
+  if (!(drive_flag && screen_slider->reform))
+    error->all(FLERR, "Fix {} eq/meso {}: with screen needs the grid keyword, or drive with "
+                      "contacts that re-form ({} the screened thresholds x_s/(1 + eps0) depend on "
+                      "the velocity: the default grid is made for the steady eps0 at the drive's "
+                      "velocity; else choose du <= sd/(4 (1 + eps0)), sd the thresholds' standard "
+                      "deviation, eps0 the steady load factor)",
+               id, thermal_keyword, thermal_cause);
   const double v = std::fabs(vstage);
-  if (!(v > 0.0))
+  if (!(v > 0.0)) {
+    // a grid made at an earlier set-up (the blocks have not moved since) stays
+    if (screened_chosen) {
+      how = "made at an earlier set-up for a velocity != 0";
+      return model->grid();
+    }
     error->all(FLERR, "Fix {} eq/meso drive: the default grid with screen at T > 0, with aging or "
-                      "with a delay needs a velocity v != 0 at the first run (it is made for the "
-                      "steady load factor at v); set v, or the grid keyword", id);
+                      "with a delay needs a velocity v != 0 at the set-up of a run while no block "
+                      "has moved (it is made for the steady load factor at v); set v, or the grid "
+                      "keyword", id);
+  }
   feq::ThermalSlider s = *screen_slider;
   s.v = v;
   double eps0 = 0.0;
@@ -897,6 +919,7 @@ double FixEQMeso::screened_grid(std::string &how)
   }
   how = fmt::format("sd/(1 + eps0), eps0 = {:.6g} the steady load factor at the drive's velocity "
                     "{:.6g}", eps0, v);
+  screened_chosen = 1;
   return feq::MESO_GRID_DEFAULT_SD * threshold_sd / (1.0 + eps0);
 }
 

@@ -223,12 +223,25 @@ TEST_F(EQMesoErrors, Thermal)
     fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0");
     command("unfix m");
   });
-  TEST_FAILURE(".*ERROR: Fix eq/meso thermal: with screen needs the grid keyword, or drive with "
+  // (at a run's set-up with fresh blocks: a restart file may bring the grid)
+  TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: with screen needs the grid keyword, or drive with "
                "contacts that re-form \\(at T > 0 the screened thresholds.*",
-               fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0 screen 0.01 1.0 1.01"););
+               fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0 screen 0.001 1.0 1.01");
+               command("run 0 post no"););
+  TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: with screen needs the grid keyword, or drive with "
+               "contacts that re-form.*",
+               fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0 screen 0.001 1.0 1.01 "
+                   "drive 1.0 1e-3 reform none");
+               command("run 0 post no"););
+  TEST_FAILURE(".*ERROR: Fix m eq/meso drive: the default grid with screen at T > 0, with aging or "
+               "with a delay needs a velocity v != 0.*",
+               fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0 screen 0.001 1.0 1.01 "
+                   "drive 1.0 0.0");
+               command("run 0 post no"););
   // with drive the default grid is made at the first run, for the drive's velocity
   HIDE_OUTPUT([&] {
-    fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0 screen 0.01 1.0 1.01 drive 1.0 1e-3");
+    fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0 screen 0.001 1.0 1.01 drive 1.0 1e-3");
+    command("run 0 post no");
     command("unfix m");
   });
   TEST_FAILURE(".*ERROR: Fix eq/meso thermal omega: must be > 0 \\(got 0\\).*",
@@ -305,10 +318,10 @@ TEST_F(EQMesoErrors, Thermal)
   TEST_FAILURE(".*ERROR: Fix eq/meso delay: unknown value 'gamma'; allowed: none, fixed, exp.*",
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay gamma 1"););
   // at T = 0 a delay takes the thermal kernel (theta = 0), which needs a grid
-  TEST_FAILURE(".*ERROR: Fix eq/meso delay: with screen needs the grid keyword, or drive with "
-               "contacts that re-form \\(with a "
-               "formation delay.*",
-               fix(std::string("100 1.0 ") + T + " delay exp 1 screen 0.01 1.0 1.01"););
+  TEST_FAILURE(".*ERROR: Fix m eq/meso delay: with screen needs the grid keyword, or drive with "
+               "contacts that re-form \\(with a formation delay.*",
+               fix(std::string("100 1.0 ") + T + " delay exp 1 screen 0.001 1.0 1.01");
+               command("run 0 post no"););
   HIDE_OUTPUT([&] {
     fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.0 1.0 1.0 delay exp 1 labels 8");
     command("run 0 post no");
@@ -326,10 +339,10 @@ TEST_F(EQMesoErrors, Thermal)
     command("unfix m");
   });
   // at T = 0: aging takes the thermal kernel; rest alone changes nothing
-  TEST_FAILURE(".*ERROR: Fix eq/meso aging: with screen needs the grid keyword, or drive with "
-               "contacts that re-form \\(with "
-               "threshold aging.*",
-               fix(std::string("100 1.0 ") + T + " screen 0.01 1.0 1.01 aging log 0.1 1"););
+  TEST_FAILURE(".*ERROR: Fix m eq/meso aging: with screen needs the grid keyword, or drive with "
+               "contacts that re-form \\(with threshold aging.*",
+               fix(std::string("100 1.0 ") + T + " screen 0.001 1.0 1.01 aging log 0.1 1");
+               command("run 0 post no"););
   HIDE_OUTPUT([&] {
     fix(std::string("100 1.0 ") + T + " grid 0.02 aging log 0.1 1 rest 10");
     command("run 0 post no");

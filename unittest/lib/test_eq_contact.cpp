@@ -1176,3 +1176,45 @@ TEST(Thinning, BreakOnceAtTheAgedThreshold)
   d.form(b.data(), 5, 0.0);
   EXPECT_THROW(d.break_once(b.data(), 5, 2.0, 0.0, 0.0), BreakError);
 }
+
+// A life's hazard budget is the Exp(1) of the second half of the Philox
+// block that draws its threshold: at formation (event 0), at a re-entry
+// into the group (the re-entry streams) and after a break (advance();
+// with crossing step the new life starts at the step's end and has used
+// none of it).  At T = 0 with aging the budget is drawn alike (a restart
+// at T > 0 finds it); an athermal row is written only within its width
+TEST(Thinning, BudgetComesWithTheThreshold)
+{
+  ThermalSpec aged = theta_spec(0.0);
+  aged.aging = AgingLaw::LOG;
+  aged.beta = 0.05;
+  aged.tau_a = 1.0;
+  for (const ThermalSpec &t : {theta_spec(0.05), aged}) {
+    const ContactModel m =
+        thermal_model(t, false, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"));
+    std::vector<double> r(m.columns(), 0.0);
+    m.form(r.data(), 17, 0.0);
+    EXPECT_EQ(r[CT_BUDGET], exponential(draw_pair(4711, 17, 0, STREAM_THRESHOLD).second));
+    EXPECT_EQ(r[CS_THRESHOLD],
+              make_uniform(0.75, 1.25)->sample_above(0.0, draw(4711, 17, 0, STREAM_THRESHOLD)));
+    m.depart(r.data());
+    m.form(r.data(), 17, 1.0);
+    EXPECT_EQ(r[CT_BUDGET],
+              exponential(draw_pair(4711, 17, 0, STREAM_THRESHOLD + STREAM_REENTRY).second));
+    long nb = 0;
+    m.step(r.data(), 17, 2.0, 1.0, nb);    // over any threshold: one break at the step's end
+    ASSERT_EQ(nb, 1);
+    const uint64_t event = static_cast<uint64_t>(r[CS_NBREAK]);
+    EXPECT_EQ(event, 1u);
+    EXPECT_EQ(r[CT_BUDGET], exponential(draw_pair(4711, 17, event, STREAM_THRESHOLD).second));
+    EXPECT_NE(r[CT_BUDGET], exponential(draw(4711, 17, event, STREAM_BUDGET)));
+  }
+  const ContactModel cold = model(true, true, spec(make_delta(0.0), "delta 0"));
+  ASSERT_EQ(cold.columns(), static_cast<int>(CS_NCOL));
+  std::vector<double> guarded(CS_NCOL + 8, -7.0);
+  cold.form(guarded.data(), 17, 0.0);
+  long nb = 0;
+  cold.resolve(guarded.data(), 17, 5.0, 0.0, nb);
+  EXPECT_GE(nb, 4);
+  for (int k = CS_NCOL; k < CS_NCOL + 8; ++k) EXPECT_EQ(guarded[k], -7.0) << k;
+}

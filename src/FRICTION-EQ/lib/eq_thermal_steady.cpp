@@ -450,8 +450,10 @@ double screened_load_factor(const ThermalSlider &s, double pi0)
     a = b;
     b += 1.0;
     if (b - lv > 60.0)
-      throw SpecError("screened load factor: no uniform screened state at velocity " + format_number(s.v, 6) +
-                      " (Pi0 x_c Gamma_s stays >= 1 - v/w up to w = e^60 v)");
+      throw SpecError("screened load factor: eps0 beyond e^60 at velocity " +
+                      format_number(s.v, 6) +
+                      " (Pi0 x_c Gamma_s stays >= 1 - v/w up to w = e^60 v: the contacts break "
+                      "faster at rest than the velocity loads them)");
   }
   for (int it = 0; it < 200 && b - a > 4e-16 * std::max(1.0, std::fabs(b)); ++it) {
     const double c = 0.5 * (a + b);
