@@ -864,9 +864,9 @@ void FixEQMeso::choose_grid()
   set_grid(want);
   if (screen_slider && want > screened && comm->me == 0)
     error->warning(FLERR, "Fix {} eq/meso grid: the default grid for the screened thresholds "
-                          "would be {:.6g} ({}), finer than a block's state allows; grid {:.6g} "
-                          "resolves them with {:.3g} cells per standard deviation: steady eps and "
-                          "F lose accuracy (set a larger velocity, or fewer labels)",
+                          "would be {:.6g} (1/8 of {}), finer than a block's state allows; grid "
+                          "{:.6g} resolves them with {:.3g} cells per standard deviation: steady "
+                          "eps and F lose accuracy (set a larger velocity, or fewer labels)",
                    id, screened, how, want, screened / want * 8.0);
   if (comm->me == 0)
     utils::logmesg(lmp, "fix eq/meso: grid {:.17g} for the screened thresholds (Pi0 = {:.6g}: {} "
@@ -890,20 +890,24 @@ double FixEQMeso::screened_grid(std::string &how)
     how = "sd (1 - Pi0)";
     return feq::meso_default_grid(*thresholds, pi0_max);
   }
-  if (!(drive_flag && screen_slider->reform))
-    error->all(FLERR, "Fix {} eq/meso {}: with screen needs the grid keyword, or drive with "
-                      "contacts that re-form ({} the screened thresholds x_s/(1 + eps0) depend on "
-                      "the velocity: the default grid is made for the steady eps0 at the drive's "
-                      "velocity; else choose du <= sd/(4 (1 + eps0)), sd the thresholds' standard "
-                      "deviation, eps0 the steady load factor)",
-               id, thermal_keyword, thermal_cause);
-  const double v = std::fabs(vstage);
-  if (!(v > 0.0)) {
-    // a grid made at an earlier set-up (the blocks have not moved since) stays
-    if (screened_chosen) {
-      how = "made at an earlier set-up for a velocity != 0";
+  // the drive's velocity, else the one an earlier set-up or the restart
+  // file's run made the grid for (made anew for this Pi0)
+  const double vdrive = drive_flag ? std::fabs(vstage) : 0.0;
+  const double v = vdrive > 0.0 ? vdrive : screened_v;
+  if (!(v > 0.0) || !screen_slider->reform) {
+    if (grid_restored) {    // the restart file's grid, as it was made
+      how = "the restart file's grid, kept";
       return model->grid();
     }
+    if (!(drive_flag && screen_slider->reform))
+      error->all(FLERR, "Fix {} eq/meso {}: with screen needs the grid keyword, or drive with "
+                        "contacts that re-form (this run sets up blocks that have not moved, with "
+                        "screening partners, and no restart file gave them a grid; {} the screened "
+                        "thresholds x_s/(1 + eps0) depend on the velocity: the default grid is made "
+                        "for the steady eps0 at the drive's velocity; else choose du <= sd/(4 (1 + "
+                        "eps0)), sd the thresholds' standard deviation, eps0 the steady load "
+                        "factor)",
+                 id, thermal_keyword, thermal_cause);
     error->all(FLERR, "Fix {} eq/meso drive: the default grid with screen at T > 0, with aging or "
                       "with a delay needs a velocity v != 0 at the set-up of a run while no block "
                       "has moved (it is made for the steady load factor at v); set v, or the grid "
@@ -917,9 +921,9 @@ double FixEQMeso::screened_grid(std::string &how)
   } catch (const feq::SpecError &e) {
     error->all(FLERR, "Fix {} eq/meso screen: {}; set the grid keyword", id, e.what());
   }
-  how = fmt::format("sd/(1 + eps0), eps0 = {:.6g} the steady load factor at the drive's velocity "
-                    "{:.6g}", eps0, v);
-  screened_chosen = 1;
+  how = fmt::format("sd/(1 + eps0), eps0 = {:.6g} the steady load factor at {} {:.6g}", eps0,
+                    vdrive > 0.0 ? "the drive's velocity" : "the earlier velocity", v);
+  screened_v = v;
   return feq::MESO_GRID_DEFAULT_SD * threshold_sd / (1.0 + eps0);
 }
 
@@ -1060,6 +1064,12 @@ void FixEQMeso::restart(char *buf)
     for (size_t k = 0; k < sig.keywords.size(); k++)
       if (sig.keywords[k] == "grid") sig.hashes[k] = feq::hash52(EQRecord::number(du));
   EQRecord::read(lmp, this, buf, 4, sig, "blocks");
+  // (with the thermal kernel and screen: kept for blocks that have not
+  // moved, made anew at the velocity of the file's drive, screened_grid())
+  if (adopt && screen_slider) {
+    grid_restored = 1;
+    if (rec[5] != 0.0 && std::isfinite(rec[4])) screened_v = std::fabs(rec[4]);
+  }
   if (adopt && du != model->grid()) {
     set_grid(du);
     if (comm->me == 0)

@@ -119,7 +119,8 @@ class FixEQMeso : public FixEQBlocks {
   // the thermal kernel's contacts (spec, thresholds, re-forming) for its
   // default grid with screen (screened_grid()); null otherwise
   std::shared_ptr<const feq::ThermalSlider> screen_slider;
-  int screened_chosen = 0;    // screened_grid() made the grid for a velocity != 0
+  double screened_v = 0.0;    // the velocity the default grid was made for (0: none yet)
+  int grid_restored = 0;      // the default grid came from a restart file
   std::string thermal_keyword, thermal_cause;    // what chose the thermal kernel (messages)
   int grid_warned;     // the warning on a grid too coarse for the screened thresholds was given
   // the grid: the user's (grid keyword), or the default, chosen for the

@@ -225,7 +225,8 @@ TEST_F(EQMesoErrors, Thermal)
   });
   // (at a run's set-up with fresh blocks: a restart file may bring the grid)
   TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: with screen needs the grid keyword, or drive with "
-               "contacts that re-form \\(at T > 0 the screened thresholds.*",
+               "contacts that re-form \\(this run sets up blocks that have not moved, with "
+               "screening partners, and no restart file gave them a grid; at T > 0 the.*",
                fix(std::string("100 1.0 ") + T + " thermal 0.05 1.0 1.0 screen 0.001 1.0 1.01");
                command("run 0 post no"););
   TEST_FAILURE(".*ERROR: Fix m eq/meso thermal: with screen needs the grid keyword, or drive with "
@@ -319,7 +320,7 @@ TEST_F(EQMesoErrors, Thermal)
                fix(std::string("100 1.0 ") + T + " grid 0.02 thermal 0.05 1.0 1.0 delay gamma 1"););
   // at T = 0 a delay takes the thermal kernel (theta = 0), which needs a grid
   TEST_FAILURE(".*ERROR: Fix m eq/meso delay: with screen needs the grid keyword, or drive with "
-               "contacts that re-form \\(with a formation delay.*",
+               "contacts that re-form \\(this run sets up .*; with a formation delay.*",
                fix(std::string("100 1.0 ") + T + " delay exp 1 screen 0.001 1.0 1.01");
                command("run 0 post no"););
   HIDE_OUTPUT([&] {
@@ -340,7 +341,7 @@ TEST_F(EQMesoErrors, Thermal)
   });
   // at T = 0: aging takes the thermal kernel; rest alone changes nothing
   TEST_FAILURE(".*ERROR: Fix m eq/meso aging: with screen needs the grid keyword, or drive with "
-               "contacts that re-form \\(with threshold aging.*",
+               "contacts that re-form \\(this run sets up .*; with threshold aging.*",
                fix(std::string("100 1.0 ") + T + " screen 0.001 1.0 1.01 aging log 0.1 1");
                command("run 0 post no"););
   HIDE_OUTPUT([&] {

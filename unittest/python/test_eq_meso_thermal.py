@@ -335,6 +335,28 @@ def test_default_grid_with_screening_needs_a_velocity(tmp_path):
         log[-3000:]
 
 
+def test_default_grid_kept_velocity_new_partners(tmp_path):
+    """run 0 makes the grid at the drive's velocity; after fix_modify
+    velocity 0 and new blocks between the old ones (Pi0 0.05 -> 0.45,
+    nothing moved yet), the next set-up makes it anew for the new Pi0 at
+    the earlier velocity: eps0 as eqtools' for Pi0 = 0.45."""
+    inp = tmp_path / "in.new"
+    inp.write_text(f"include {DRIVE}\nfix_modify m velocity 0.0\n"
+                   "variable j loop ${M}\nlabel mid\n"
+                   "create_atoms 1 single $(v_j-1.5) 0.0 0.0 units box\n"
+                   "next j\njump SELF mid\nrun 0\n")
+    log = eqtools.run_lammps(inp, {"pi0": 0.05, "Xmax": 0.0}, cwd=tmp_path)
+    found = re.findall(r"grid (\S+) for the screened thresholds \(Pi0 = (\S+): .*eps0 = (\S+) the "
+                       r"steady load factor at the (drive's|earlier) velocity 1e-06", log)
+    assert len(found) == 2, log[-3000:]
+    assert abs(float(found[0][1]) - 0.05) < 1e-9 and found[0][3] == "drive's"
+    assert abs(float(found[1][1]) - 0.45) < 1e-9 and found[1][3] == "earlier"
+    e0 = ts.eps0(1e-2, theta=0.05, Pi0=0.45)
+    assert abs(float(found[1][2]) - e0) < 1e-5 * e0, (found, e0)
+    du = 0.125 * 0.5 / math.sqrt(12.0) * 1e-4 / (1.0 + e0)
+    assert abs(float(found[1][0]) - du) < 1e-9 * du
+
+
 def test_default_grid_from_a_restart_needs_no_drive(tmp_path):
     """Blocks written with the default grid of drive continue from a
     restart file in a fix without drive and without grid (the file's
@@ -354,6 +376,17 @@ def test_default_grid_from_a_restart_needs_no_drive(tmp_path):
         assert "of the restart file's blocks" in log, log[-2000:]
         ends.append(log.split("EPS_END")[-1].split()[0])
     assert ends[0] == ends[1] and float(ends[0]) > 0.0, ends
+    # blocks written before they moved (run 0): the file's grid and drive
+    # velocity serve a fix without drive, as a fix with it
+    (tmp_path / "in.w0").write_text(f"include {DRIVE}\nwrite_restart r0.bin\n")
+    eqtools.run_lammps(tmp_path / "in.w0", {"Xmax": 0.0}, cwd=tmp_path)
+    fresh = []
+    for drive in ("", "drive 1.0 1e-6"):
+        (tmp_path / "in.r0").write_text("read_restart r0.bin\n" + fix.format(drive=drive) +
+                                        "velocity all set 1e-6 0.0 0.0 units box\n" + body)
+        log = eqtools.run_lammps(tmp_path / "in.r0", {}, cwd=tmp_path)
+        fresh.append(log.split("EPS_END")[-1].split()[0])
+    assert fresh[0] == fresh[1] and float(fresh[0]) > 0.0, fresh
     (tmp_path / "in.f").write_text(DRIVE.read_text().replace("drive 1.0 $(v_vdrive*v_xc) ", ""))
     log = eqtools.run_lammps(tmp_path / "in.f", {"Xmax": 0.01}, cwd=tmp_path, check=False)
     assert "Fix m eq/meso thermal: with screen needs the grid keyword, or drive" in log, log[-2000:]
