@@ -1026,8 +1026,12 @@ void FixEQMeso::check_normalization()
 
 void FixEQMeso::write_restart(FILE *fp)
 {
+  // (with the thermal kernel and screen only a grid made for the screening
+  // or adopted from a file: not the unscreened one the fix starts on)
+  const bool chosen = !screen_slider || screened_v > 0.0 || grid_restored;
   EQRecord::write(lmp, fp,
-                  {stage, vstage, static_cast<double>(drive_flag), grid_default ? model->grid() : 0.0},
+                  {stage, vstage, static_cast<double>(drive_flag),
+                   grid_default && chosen ? model->grid() : 0.0},
                   shaping);
 }
 

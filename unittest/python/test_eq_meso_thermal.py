@@ -387,6 +387,31 @@ def test_default_grid_from_a_restart_needs_no_drive(tmp_path):
         log = eqtools.run_lammps(tmp_path / "in.r0", {}, cwd=tmp_path)
         fresh.append(log.split("EPS_END")[-1].split()[0])
     assert fresh[0] == fresh[1] and float(fresh[0]) > 0.0, fresh
+    # ... and its drive velocity makes the grid anew where partners come
+    # (Pi0 0.05 -> 0.45 with blocks between the old ones, nothing moved)
+    (tmp_path / "in.wp").write_text(f"include {DRIVE}\nwrite_restart rp.bin\n")
+    eqtools.run_lammps(tmp_path / "in.wp", {"Xmax": 0.0, "pi0": 0.05}, cwd=tmp_path)
+    (tmp_path / "in.rp").write_text(
+        "read_restart rp.bin\n" + fix.format(drive="").replace("0.003", "0.00025") +
+        body.replace("run 40", "run 0") +    # (create_atoms needs a run after read_restart)
+        "variable j loop 12\nlabel mid\ncreate_atoms 1 single $(v_j-1.5) 0.0 0.0 units box\n"
+        "next j\njump SELF mid\nrun 0\n")
+    log = eqtools.run_lammps(tmp_path / "in.rp", {}, cwd=tmp_path)
+    m = re.search(r"\(Pi0 = (\S+): .*eps0 = (\S+) the steady load factor at the earlier velocity "
+                  r"1e-06", log)
+    assert m and abs(float(m.group(1)) - 0.45) < 1e-9, log[-3000:]
+    e0 = ts.eps0(1e-2, theta=0.05, Pi0=0.45)
+    assert abs(float(m.group(2)) - e0) < 1e-5 * e0
+    # a file written before any run holds no grid for the screening: the
+    # reader without drive stops as a fix that was never written
+    (tmp_path / "in.wa").write_text(
+        DRIVE.read_text().replace("drive 1.0 $(v_vdrive*v_xc) ", "")
+        .replace("run             ${nsteps}", "write_restart ra.bin").replace("print", "#"))
+    eqtools.run_lammps(tmp_path / "in.wa", {}, cwd=tmp_path)
+    (tmp_path / "in.ra").write_text("read_restart ra.bin\n" + fix.format(drive="") + body)
+    log = eqtools.run_lammps(tmp_path / "in.ra", {}, cwd=tmp_path, check=False)
+    assert "Fix m eq/meso thermal: with screen needs the grid keyword, or drive" in log, \
+        log[-2000:]
     (tmp_path / "in.f").write_text(DRIVE.read_text().replace("drive 1.0 $(v_vdrive*v_xc) ", ""))
     log = eqtools.run_lammps(tmp_path / "in.f", {"Xmax": 0.01}, cwd=tmp_path, check=False)
     assert "Fix m eq/meso thermal: with screen needs the grid keyword, or drive" in log, log[-2000:]
