@@ -1021,7 +1021,11 @@ void FixEQMeso::check_normalization()
    when it was a default, the grid of the stored blocks (0: set by the
    grid keyword), so that a fix re-specified with the default grid
    continues on the default its blocks were made on; otherwise the grid
-   must be re-specified as it was (the signature names the grid keyword)
+   must be re-specified as it was (the signature names the grid keyword).
+   Fifth value: the velocity the default grid was made for with screen
+   and the thermal kernel (0: none), so that the reader makes it anew
+   where the writer would (screened_grid()); records of 4 values (before
+   27 Nov 2026) take the file's drive velocity instead
 ------------------------------------------------------------------------- */
 
 void FixEQMeso::write_restart(FILE *fp)
@@ -1031,7 +1035,7 @@ void FixEQMeso::write_restart(FILE *fp)
   const bool chosen = !screen_slider || screened_v > 0.0 || grid_restored;
   EQRecord::write(lmp, fp,
                   {stage, vstage, static_cast<double>(drive_flag),
-                   grid_default && chosen ? model->grid() : 0.0},
+                   grid_default && chosen ? model->grid() : 0.0, screened_v},
                   shaping);
 }
 
@@ -1039,15 +1043,17 @@ void FixEQMeso::restart(char *buf)
 {
   const double *rec = reinterpret_cast<const double *>(buf);
   // records of earlier versions have the stage only (3 values): their grid
-  // is the command's
-  if (!(rec[0] == feq::RECORD_MAGIC && rec[1] == feq::RECORD_FORMAT && rec[2] == 4.0)) {
+  // is the command's; 4 values: no velocity of the grid
+  if (!(rec[0] == feq::RECORD_MAGIC && rec[1] == feq::RECORD_FORMAT &&
+        (rec[2] == 4.0 || rec[2] == 5.0))) {
     FixEQBlocks::restart(buf);
     return;
   }
+  const int nvalues = static_cast<int>(rec[2]);
   // a record of the thermal kernel has one keyword more (thermal): say
   // which way the file and the command differ
   const size_t nsig = shaping.hashes.size();
-  const double nfile = rec[7];
+  const double nfile = rec[3 + nvalues];
   if (nfile == double(nsig + 1) && !thermal_kernel)
     error->all(FLERR, "Fix {} eq/meso thermal: the restart file's blocks were made by the thermal "
                       "kernel (thermal with T > 0, aging or delay): re-specify thermal, barrier, "
@@ -1067,12 +1073,16 @@ void FixEQMeso::restart(char *buf)
   if (adopt)
     for (size_t k = 0; k < sig.keywords.size(); k++)
       if (sig.keywords[k] == "grid") sig.hashes[k] = feq::hash52(EQRecord::number(du));
-  EQRecord::read(lmp, this, buf, 4, sig, "blocks");
+  EQRecord::read(lmp, this, buf, nvalues, sig, "blocks");
   // (with the thermal kernel and screen: kept for blocks that have not
-  // moved, made anew at the velocity of the file's drive, screened_grid())
+  // moved, made anew at the velocity it was made for, screened_grid())
+  if (nvalues == 5 && !(std::isfinite(rec[7]) && rec[7] >= 0.0))
+    error->all(FLERR, "Fix {} eq/meso: the restart file's record of this fix is unusable: the "
+                      "velocity of its grid is {}", id, rec[7]);
   if (adopt && screen_slider) {
     grid_restored = 1;
-    if (rec[5] != 0.0 && std::isfinite(rec[4])) screened_v = std::fabs(rec[4]);
+    if (nvalues == 5) screened_v = rec[7];
+    else if (rec[5] != 0.0 && std::isfinite(rec[4])) screened_v = std::fabs(rec[4]);
   }
   if (adopt && du != model->grid()) {
     set_grid(du);
@@ -1083,7 +1093,7 @@ void FixEQMeso::restart(char *buf)
   // the stage: FixEQBlocks' record of 3 values and the signature
   std::vector<double> stage_rec(rec, rec + 6);
   stage_rec[2] = 3.0;
-  stage_rec.insert(stage_rec.end(), rec + 7, rec + 8 + sig.hashes.size());
+  stage_rec.insert(stage_rec.end(), rec + 3 + nvalues, rec + 4 + nvalues + sig.hashes.size());
   FixEQBlocks::restart(reinterpret_cast<char *>(stage_rec.data()));
 }
 

@@ -417,6 +417,36 @@ def test_default_grid_from_a_restart_needs_no_drive(tmp_path):
     assert "Fix m eq/meso thermal: with screen needs the grid keyword, or drive" in log, log[-2000:]
 
 
+def test_default_grid_restart_keeps_the_grids_velocity(tmp_path):
+    """A restart file holds the velocity its default grid was made for:
+    run 0 makes the grid at the drive's velocity, fix_modify velocity 0,
+    write_restart; a reader (without drive, or with drive at velocity 0)
+    given blocks between the old ones (Pi0 0.05 -> 0.45, nothing moved)
+    makes the grid anew at that velocity, as the writer itself does
+    (test_default_grid_kept_velocity_new_partners), not keeping the file's
+    grid of Pi0 = 0.05 (the code before: the record had only the stage's
+    velocity, 0)."""
+    (tmp_path / "in.w").write_text(f"include {DRIVE}\nfix_modify m velocity 0.0\n"
+                                   "write_restart rv.bin\n")
+    eqtools.run_lammps(tmp_path / "in.w", {"Xmax": 0.0, "pi0": 0.05}, cwd=tmp_path)
+    e0 = ts.eps0(1e-2, theta=0.05, Pi0=0.45)
+    du = 0.125 * 0.5 / math.sqrt(12.0) * 1e-4 / (1.0 + e0)
+    for drive in ("", "drive 1.0 0.0"):
+        (tmp_path / "in.r").write_text(
+            "read_restart rv.bin\n"
+            "fix m all eq/meso 100 1.0 threshold uniform 7.5e-05 0.000125 screen 0.00025 1.0 1.01 "
+            f"thermal 0.05 1.0 1.0 check 0 {drive}\n"
+            "neighbor 0.3 bin\ncomm_modify cutoff 1.7\nfix mv all nve/noforce\nrun 0\n"
+            "variable j loop 12\nlabel mid\ncreate_atoms 1 single $(v_j-1.5) 0.0 0.0 units box\n"
+            "next j\njump SELF mid\nrun 0\n")
+        log = eqtools.run_lammps(tmp_path / "in.r", {}, cwd=tmp_path)
+        m = re.search(r"grid (\S+) for the screened thresholds \(Pi0 = (\S+): .*eps0 = (\S+) the "
+                      r"steady load factor at the earlier velocity 1e-06", log)
+        assert m and abs(float(m.group(2)) - 0.45) < 1e-9, (drive, log[-3000:])
+        assert abs(float(m.group(3)) - e0) < 1e-5 * e0
+        assert abs(float(m.group(1)) - du) < 1e-9 * du
+
+
 # ---------------------------------------------------------- screening length
 # measured: at cells = 4 (du = sd/(4 (1 + eps0))) and dX = du/2 the fitted
 # length is 0.3-0.4 % below the lattice's; with dX = du 1.3 %: the step and
