@@ -126,3 +126,29 @@ def test_static_peak_at_a_kink_and_exact_with_stiffness(tmp_path):
     # solution is compared after the same scaling
     assert abs(s["static_peak"] - 1.25 * 0.75) < 1e-10 and abs(s["static_peak_X"] - 0.75) < 1e-12
     assert s["exact_max_error"] < 1e-11
+
+
+def test_fixed_delay_beyond_xmax(tmp_path):
+    """A fixed delay whose re-formations lie beyond xmax re-forms nothing
+    within it, however long (v tau / dx = 1e10 cells: before, the kernel
+    was allocated for all of them, std::bad_alloc): F(X) equal to that of
+    a delay of v tau = 10 > xmax, to the last digit."""
+    base = ["threshold", "uniform", 0.75, 1.25, "velocity", 1e-3, "xmax", 2]
+    far = eqtools.run_eqme(base + ["delay", "fixed", 1e9, "force", "far.dat"], cwd=tmp_path)
+    near = eqtools.run_eqme(base + ["delay", "fixed", 1e4, "force", "near.dat"], cwd=tmp_path)
+    a, b = np.loadtxt(tmp_path / "far.dat"), np.loadtxt(tmp_path / "near.dat")
+    assert a.shape == b.shape and np.array_equal(a[:, 1], b[:, 1])
+    assert a[:, 1].max() == far["static_peak"] == near["static_peak"] == 0.75
+
+
+def test_lifetime_underflow_is_an_error(tmp_path):
+    """At a velocity so small that a life is shorter than the smallest
+    double (creep), an error naming velocity, not NaN with status 0."""
+    p = eqme(["threshold", "uniform", 0.75, 1.25, "xmax", 2, "thermal", 0.02, 1, 1,
+              "velocity", 1e-300], tmp_path)
+    assert p.returncode == 1 and "velocity 1e-300: the contacts' lifetime" in p.stderr, \
+        (p.stdout, p.stderr)
+    # v = 1e-30 still gives the creep force
+    s = eqtools.run_eqme(["threshold", "uniform", 0.75, 1.25, "xmax", 2, "thermal", 0.02, 1, 1,
+                          "velocity", 1e-30], cwd=tmp_path)
+    assert 0.0 < s["kinetic_force"] < 1e-6

@@ -424,6 +424,10 @@ ThermalSteady thermal_steady_state(const ThermalSlider &s)
     LM[0] /= life.weight_norm();
     LM[1] /= life.weight_norm();
   }
+  if (!(LM[0] > 0.0) || !std::isfinite(LM[1]))
+    throw SpecError("velocity " + format_number(s.v, 6) + ": the contacts' lifetime " +
+                    format_number(LM[0], 6) + " underflows (they break by activation long "
+                    "before the slider moves them: the creep limit); use a larger velocity");
   ThermalSteady out;
   out.lifetime = LM[0];
   const double cycle = LM[0] + s.delay_length();
@@ -601,12 +605,16 @@ struct DelayKernel {
   double tail = 0.0, q = 0.0;
 };
 
-DelayKernel delay_kernel(const ThermalSlider &s, double dx)
+// (a fixed delay beyond `cells` cells re-forms nothing within them: the
+// kernel is cut there)
+DelayKernel delay_kernel(const ThermalSlider &s, double dx, long cells_max)
 {
   DelayKernel d;
   const double len = s.delay_length();
   if (!(len > 0.0)) {
     d.g = {1.0};
+  } else if (s.spec.delay == DelayKind::FIXED && !(len / dx < static_cast<double>(cells_max))) {
+    d.g = {0.0};
   } else if (s.spec.delay == DelayKind::FIXED) {
     const double cells = len / dx;
     const long n0 = static_cast<long>(std::floor(cells));
@@ -709,7 +717,7 @@ MEResult ThermalTransient::solve(double dx, double Xmax) const
     cells = std::min<long>(N, static_cast<long>(std::ceil(S->end() / dx)));
     K = life_kernels(*S, s.r0, dx, cells);
   }
-  const DelayKernel D = delay_kernel(s, dx);
+  const DelayKernel D = delay_kernel(s, dx, N + 1);
   const double G0 = D.g[0], W0 = S ? K.W[0] : 0.0;
 
   MEResult r;
