@@ -53,6 +53,10 @@ const int CUT_STEPS = 32;
 const double KINK_NEGLIGIBLE = 1e-14;
 // the most a panel of a life may add to the hazard H
 const double DH_PANEL = 2.0;
+// a life's march that needs more panels than this does not converge
+// (its acceptance test is absolute: see ContactLife::moments()); a
+// converging one takes tens to hundreds
+const long MAX_LIFE_PANELS = 200000;
 
 /* ---------------------------------------------------------------------- */
 
@@ -374,7 +378,16 @@ void ContactLife::moments(double xs0, double &L, double &M) const
   L = M = 0.0;
   double a = 0.0, H = 0.0, h = ys / 16.0;
   const double hmin = 1e-13 * ys;
+  long panels = 0;
   while (a < ys && H < H_CUT) {
+    if (++panels > MAX_LIFE_PANELS)
+      throw SpecError("thermal: the steady state's quadrature of one contact life (threshold " +
+                      format_number(xs0, 6) + ", theta " + format_number(model.params().theta, 6) +
+                      ", velocity " + format_number(v, 6) + ") does not converge within " +
+                      std::to_string(MAX_LIFE_PANELS) + " panels (a known limit of this quadrature: "
+                      "very small theta for the velocity, strong aging with a short tau_a, or "
+                      "stretches far from 1 in the length unit: express the lengths in units "
+                      "of the mean threshold)");
     double b = a + h;
     if (b > ys - 0.01 * h) b = ys;
     const double m = 0.5 * (a + b);
