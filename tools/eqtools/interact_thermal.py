@@ -330,6 +330,17 @@ def break_stretch(e0, budget, xs, v, params=None, **kw):
 
 # ------------------------------------------------------------------ Monte Carlo
 
+
+def _checked(X, nbr, kij, v, prm):
+    """The samples, neighbours and couplings of simulate() and
+    simulate_delay() as arrays, after the checks they share."""
+    if prm.x_r < 0.0 or v <= 0.0:
+        raise ValueError("need x_r >= 0 and v > 0")
+    X = np.asarray(X, float)
+    if np.any(np.diff(X) < 0) or np.any(X < 0):
+        raise ValueError("X must be sorted and >= 0")
+    return X, np.asarray(nbr), np.asarray(kij, float)
+
 def simulate(X, nbr, kij, v, params=None, replicas=64, seed=0, k=1.0, observer=None, **kw):
     """Event-driven Monte Carlo of `replicas` independent copies of the
     interacting contacts (sites given by nbr, kij of couplings()), all
@@ -356,13 +367,7 @@ def simulate(X, nbr, kij, v, params=None, replicas=64, seed=0, k=1.0, observer=N
                               observer=observer)
     if observer is not None:
         raise ValueError("observer: only with a delay")
-    if prm.x_r < 0.0 or v <= 0.0:
-        raise ValueError("need x_r >= 0 and v > 0")
-    X = np.asarray(X, float)
-    if np.any(np.diff(X) < 0) or np.any(X < 0):
-        raise ValueError("X must be sorted and >= 0")
-    nbr = np.asarray(nbr)
-    kij = np.asarray(kij, float)
+    X, nbr, kij = _checked(X, nbr, kij, v, prm)
     N, m = nbr.shape
     R = int(replicas)
     rng = np.random.default_rng(seed)
@@ -487,13 +492,7 @@ def simulate_delay(X, nbr, kij, v, params=None, replicas=64, seed=0, k=1.0, obse
         raise ValueError("aging is not modelled")
     if prm.delay is None or not prm.tau > 0.0:
         raise ValueError("simulate_delay needs delay 'fixed' or 'exp' with tau > 0")
-    if prm.x_r < 0.0 or v <= 0.0:
-        raise ValueError("need x_r >= 0 and v > 0")
-    X = np.asarray(X, float)
-    if np.any(np.diff(X) < 0) or np.any(X < 0):
-        raise ValueError("X must be sorted and >= 0")
-    nbr = np.asarray(nbr)
-    kij = np.asarray(kij, float)
+    X, nbr, kij = _checked(X, nbr, kij, v, prm)
     N, m = nbr.shape
     R = int(replicas)
     rng = np.random.default_rng(seed)
