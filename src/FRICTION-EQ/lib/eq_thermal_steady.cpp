@@ -55,8 +55,9 @@ const double KINK_NEGLIGIBLE = 1e-14;
 const double DH_PANEL = 2.0;
 // a life's march that needs more panels than this does not converge
 // (its acceptance test is absolute: see ContactLife::moments()); a
-// converging one takes tens to hundreds
-const long MAX_LIFE_PANELS = 200000;
+// converging one takes tens to hundreds, a few in gaussian tails at
+// small theta some hundred thousand)
+const long MAX_LIFE_PANELS = 2000000;
 
 /* ---------------------------------------------------------------------- */
 
