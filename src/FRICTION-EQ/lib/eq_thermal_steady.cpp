@@ -55,8 +55,8 @@ const double KINK_NEGLIGIBLE = 1e-14;
 const double DH_PANEL = 2.0;
 // a life's march that needs more panels than this does not converge
 // (its acceptance test is absolute: see ContactLife::moments()); a
-// converging one takes tens to hundreds, a few in gaussian tails at
-// small theta some hundred thousand)
+// converging one takes tens to hundreds of panels, a few lives in the
+// gaussian tails at small theta some hundred thousand
 const long MAX_LIFE_PANELS = 2000000;
 
 /* ---------------------------------------------------------------------- */
@@ -619,8 +619,8 @@ struct DelayKernel {
   double tail = 0.0, q = 0.0;
 };
 
-// (a fixed delay beyond `cells` cells re-forms nothing within them: the
-// kernel is cut there)
+// (a fixed delay of cells_max cells or more re-forms nothing within the
+// cells_max - 1 cells of the window: the kernel is cut there)
 DelayKernel delay_kernel(const ThermalSlider &s, double dx, long cells_max)
 {
   DelayKernel d;
