@@ -363,17 +363,12 @@ void FixEQContacts::init()
                    modify->fix[i]->id);
     }
   }
-  const feq::ThermalSpec &ts = model->thermal_model().params();
-  if (field && model->thermal_active() && ts.delay != feq::DelayKind::NONE && ts.tau > 0.0)
-    error->all(FLERR, "Fix {} eq/contacts delay: not supported with pair style eq/elastic (a "
-                      "waiting contact would leave the field): remove delay or the pair style",
-               id);
 }
 
 // formed, and not waiting to re-form (temperature, aging or delays)
 bool FixEQContacts::attached(const double *st) const
 {
-  return st[CS_THRESHOLD] > 0.0 && !(model->thermal_active() && st[CT_WAIT] > 0.0);
+  return st[CS_THRESHOLD] > 0.0 && !model->waiting(st);
 }
 
 // the field of this run, if it is still the one found at init
@@ -761,6 +756,11 @@ void FixEQContacts::stretches()
         st[CS_STRETCH] = st[CS_FORCE] = st[CS_FIELD] = 0.0;
         continue;
       }
+      if (model->waiting(st)) {    // out of the field; its anchor follows its atom
+        st[CS_ANCHOR] = unwrap(i);
+        st[CS_STRETCH] = st[CS_FORCE] = st[CS_FIELD] = 0.0;
+        continue;
+      }
       const double s = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
       st[CS_STRETCH] = s;
       qbuf[i] = s;
@@ -802,11 +802,12 @@ void FixEQContacts::record_changes(const int *list, int n, const double *ds, boo
   chg_from = nversion++;
 }
 
-// contacts detached for good leave the field: not a change set
+// contacts detached for good or waiting to re-form leave the field: not
+// a change set
 void FixEQContacts::record_detached()
 {
   double *const *st = state;
-  for (const int i : members) qbuf[i] = st[i][CS_THRESHOLD] > 0.0 ? st[i][CS_STRETCH] : NOT_A_CONTACT;
+  for (const int i : members) qbuf[i] = attached(st[i]) ? st[i][CS_STRETCH] : NOT_A_CONTACT;
   chg_from = -1;
   ++nversion;
 }
@@ -819,8 +820,10 @@ void FixEQContacts::field_step(bool allow_breaks, double dt)
   // of a run (dt = 0) makes the rows valid for this run's parameters
   const bool hot = model->thermal_active() && allow_breaks;
   const bool probed = hot && dt > 0.0, hot_setup = hot && dt == 0.0;
-  if (hot_setup) reform_waiting();
+  const bool delays = model->leaves_field();
+  if (hot_setup && !delays) reform_waiting();
   if (probed) save_effective();
+  if (probed && delays) count_down(dt);
   stretches();
   local_sum[SUM_BREAKS] = 0.0;
   rounds_last = 0;
@@ -830,10 +833,11 @@ void FixEQContacts::field_step(bool allow_breaks, double dt)
     Hooks hooks(this, elastic);
     AvalancheResult res;
     try {
-      // the thermal breaks of the step, then the avalanche
+      // the contacts whose delay ended join the field, the thermal breaks
+      // of the step, then the avalanche
+      if (probed && delays) rejoin(hooks);
       if (probed) thermal_stage(hooks.field(), dt);
-      if (hot_setup)
-        for (const int i : members) model->new_run(state[i]);
+      if (hot_setup) new_run();
       res = avalanche(*model, state, members.data(), static_cast<int>(members.size()), break_tol,
                       hooks, blist, dsv, probed ? tbreak.data() : nullptr,
                       probed ? tage.data() : nullptr);
@@ -854,14 +858,86 @@ void FixEQContacts::field_step(bool allow_breaks, double dt)
   // nothing (they differ from the engine's by rounding)
   for (const int i : members) {
     double *st = state[i];
-    st[CS_FIELD] = st[CS_THRESHOLD] > 0.0 ? view.h[i] : 0.0;
+    st[CS_FIELD] = attached(st) ? view.h[i] : 0.0;
   }
   if (broke.empty()) return;
   const EQUtil::Unwrap unwrap(atom, domain, idir);
   for (const int i : broke) {
     double *st = state[i];
-    if (st[CS_THRESHOLD] > 0.0) st[CS_STRETCH] = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
+    if (attached(st)) st[CS_STRETCH] = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
   }
+}
+
+// a new run's parameters for every formed contact of the group (waiting
+// ones included)
+void FixEQContacts::new_run()
+{
+  const int *const mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((mask[i] & groupbit) && state[i][CS_THRESHOLD] > 0.0) model->new_run(state[i]);
+}
+
+/* ----------------------------------------------------------------------
+   formation delays with the field (ContactModel::leaves_field()): a
+   broken contact waits out of the field, its anchor following its atom.
+   count_down(), before stretches(): the waits go on by dt; a contact
+   whose wait ends within the step re-forms (ContactModel::rejoin()) with
+   the stretch it is to have at the end of the step without a field, and
+   is listed in joins.  rejoin(), on every rank: if any contact joined,
+   the field is recomputed with them (a new version that is not a change
+   set), then with reform_as force each joiner's stretch is solved in
+   the field of its partners, k e = k (r + motion since), e = s + h/k:
+   s = (k s0 + K s0 - h)/(k + K), a change set at fixed positions (with
+   reform_as stretch it keeps s0).
+   (Joiners of one step see each other at s0: the reference re-forms
+   them in the field of the contacts attached before; the difference
+   vanishes with the step, as the chance that partners join together.)
+------------------------------------------------------------------------- */
+
+void FixEQContacts::count_down(double dt)
+{
+  const EQUtil::Unwrap unwrap(atom, domain, idir);
+  const int *const mask = atom->mask;
+  joins.clear();
+  for (int i = 0; i < atom->nlocal; i++) {
+    double *st = state[i];
+    if (!(mask[i] & groupbit) || !model->waiting(st)) continue;
+    const double xu = unwrap(i);
+    const double m = unwrap.stretch(xu - st[CS_ANCHOR]);
+    if (!std::isfinite(m))
+      error->one(FLERR, "Fix {} eq/contacts: the motion of the atom of waiting contact {} is {} "
+                        "(numerical instability: check the timestep, the forces and the "
+                        "integrator)", id, atom->tag[i], m);
+    if (model->quick_wait(st, m, dt)) continue;    // its anchor: stretches()
+    st[CS_ANCHOR] = xu - model->rejoin(st, m, dt);
+    joins.push_back(i);
+  }
+}
+
+void FixEQContacts::rejoin(Hooks &hooks)
+{
+  long n = static_cast<long>(joins.size());
+  hooks.global_sum(&n, 1);
+  if (n == 0) return;
+  chg_from = -1;    // the set of coupled atoms changed: the field recomputes
+  ++nversion;
+  const feq::AvalancheField f = hooks.field();
+  if (!model->reform_as_force()) return;
+  int top = -1;
+  for (const int i : joins) top = std::max(top, i);
+  if (static_cast<int>(dsv.size()) <= top) dsv.resize(top + 1);
+  long big = 0;    // changes an incremental update cannot follow (as avalanche())
+  for (const int i : joins) {
+    double *st = state[i];
+    const double k = st[CS_STIFFNESS];
+    const double ds = -f.h[i] / (k + f.k[i]);
+    st[CS_STRETCH] += ds;
+    st[CS_ANCHOR] -= ds;
+    dsv[i] = ds;
+    if (!(std::fabs(ds) <= feq::AVALANCHE_CHANGE_MAX * (1.0 + std::fabs(st[CS_STRETCH])))) ++big;
+  }
+  hooks.global_sum(&big, 1);
+  hooks.changed(joins.data(), static_cast<int>(joins.size()), dsv.data(), big == 0);
 }
 
 // the effective stretch e = s + h/k of every formed contact at the end of
@@ -873,7 +949,7 @@ void FixEQContacts::save_effective()
   if (static_cast<int>(eprev.size()) < atom->nmax) eprev.resize(atom->nmax);
   for (int i = 0; i < nlocal; i++) {
     const double *st = state[i];
-    eprev[i] = (mask[i] & groupbit) && st[CS_THRESHOLD] > 0.0
+    eprev[i] = (mask[i] & groupbit) && attached(st)
         ? st[CS_STRETCH] + st[CS_FIELD] / st[CS_STIFFNESS]
         : NAN;
   }
@@ -909,9 +985,9 @@ void FixEQContacts::thermal_stage(const feq::AvalancheField &f, double dt)
   }
 }
 
-// contacts of a restart file written with a delay that still wait: the
-// delay is off with the pair style, so they re-form now, with the
-// stretch they were to re-form with
+// contacts of a restart file written with a delay that still wait, in a
+// run with the pair style and without a delay: they re-form now, with
+// the stretch they were to re-form with
 void FixEQContacts::reform_waiting()
 {
   const EQUtil::Unwrap unwrap(atom, domain, idir);

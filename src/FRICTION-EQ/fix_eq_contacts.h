@@ -126,6 +126,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   // none; the age of the new contact); valid within one field_step()
   std::vector<double> eprev, tbreak, tage;
   std::vector<int> members, blist;
+  std::vector<int> joins;    // contacts whose delay ended in this step (count_down())
   std::vector<int> broke;    // contacts re-formed in this step's avalanche (once per round)
   bigint nevaluation, nversion, chg_from;
   EQChangeSet chg;
@@ -152,6 +153,9 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void save_effective();
   void thermal_stage(const feq::AvalancheField &f, double dt);
   void reform_waiting();
+  void new_run();
+  void count_down(double dt);
+  void rejoin(Hooks &hooks);
   void record_changes(const int *list, int n, const double *ds, bool exact);
   void record_detached();
   void apply(bool allow_breaks);

@@ -136,7 +136,7 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
   comm_reverse = 3;
   cut_global = 0.0;
   wvir[0] = wvir[1] = wvir[2] = 0.0;
-  n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = 0;
+  n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = n_joined = 0;
   drift_max = hscale_max = 0.0;
 }
 
@@ -544,10 +544,18 @@ void PairEQElastic::refresh()
     return;
   }
   if (eval != eval_seen) {    // the positions may have moved
+    // and the set of coupled atoms changed with them (a new version that
+    // is not a change set: contacts that end their formation delay)
+    EQChangeSet set;
+    const bool members = version != version_seen && !src->source_changes(version_seen, set);
     eval_seen = eval;
     version_seen = version;
     ++n_update;
-    if (check_every > 0 && n_update % check_every == 0) drift_check(src);
+    if (members) {
+      ++n_joined;
+      recompute(src);
+    }
+    else if (check_every > 0 && n_update % check_every == 0) drift_check(src);
     else follow(src);
     return;
   }
@@ -1000,14 +1008,18 @@ void PairEQElastic::field_report()
                            : std::string("no drift check (check 0)"));
     utils::logmesg(lmp, "pair eq/elastic: {} field updates on rank 0: {} rigid translations (no "
                         "pair work), {} recomputed after list builds, {} non-uniform, {} followed the "
-                        "blocks' positions; {} coordinate changes scattered on all ranks; {}\n",
-                   n_update, n_uniform, n_rebuild, n_nonuniform, n_advance, sums[0], drift);
+                        "blocks' positions{}; {} coordinate changes scattered on all ranks; {}\n",
+                   n_update, n_uniform, n_rebuild, n_nonuniform, n_advance,
+                   n_joined > 0 ? fmt::format(", {} recomputed as contacts re-formed after their "
+                                              "delay", n_joined)
+                                : std::string(),
+                   sums[0], drift);
     if (n_check > 0 && all[0] > 1e-9 * all[1])
       error->warning(FLERR, "Pair eq/elastic: the incremental field drifted by {:.3g} from the "
                             "recomputed one (scale of h {:.3g}); lower the check interval "
                             "(pair_style eq/elastic rcut check N)", all[0], all[1]);
   }
-  n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = 0;
+  n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = n_joined = 0;
   drift_max = hscale_max = 0.0;
 }
 

@@ -197,6 +197,7 @@ class PairEQElastic : public Pair, public EQElasticField {
 
   // what the updates cost and how far the incremental field drifted
   bigint n_update, n_uniform, n_rebuild, n_nonuniform, n_advance, n_change, n_check;
+  bigint n_joined;    // recomputed at a new evaluation for a new set of coupled atoms
   double drift_max, hscale_max;
 
   void allocate();

@@ -194,8 +194,10 @@ def chain(n=40, ntypes=1):
 C_ARGS = "1.0 99 threshold uniform 0.75 1.25"
 # temperature, aging and a delay: 9 more values per contact
 C_THERMAL = C_ARGS + " thermal 0.1 1.0 1.0 aging log 0.05 1.0 delay exp 0.1"
-# interacting contacts at T > 0 with aging (no delay with pair eq/elastic)
+# interacting contacts at T > 0 with aging, and with delays (waiting
+# contacts leave the field)
 C_THERMAL_FIELD = C_ARGS + " thermal 0.1 1.0 1.0 aging log 0.05 1.0 rest 10"
+C_DELAY_FIELD = C_ARGS + " thermal 0.1 1.0 1.0 delay exp 0.5"
 S_ARGS = "1.0 sawtooth 1.0 drive 0.07 0.01 stage 14.5"
 S_DISORDER = " disorder gaussian 1.0 0.05 9"
 # thermal hops of the blocks (sawtooth wells, reverse break): 3 more values per block
@@ -455,6 +457,9 @@ def gen_unfix_within(b):
     field = contacts_system("elastic", "move", cargs=C_THERMAL_FIELD)
     field.name += "-thermal"
     systems.append(field)
+    waits = contacts_system("elastic", "move", cargs=C_DELAY_FIELD)
+    waits.name += "-delay"
+    systems.append(waits)
     hops = substrate_system("elastic", S_THERMAL)
     hops.name += "-thermal"
     systems.append(hops)

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace feq {
 
@@ -204,9 +205,6 @@ double ContactModel::break_once(double *st, uint64_t tag, double e, double h, do
                                                  "carry its partners' force beyond its threshold "
                                                  "and break without end: use reform_as force or "
                                                  "a smaller ftilde)")));
-  if (thermal_on && thermal.params().delay != DelayKind::NONE && thermal.params().tau > 0.0)
-    throw BreakError("contact " + std::to_string(tag) + ": a formation delay is not supported "
-                     "for interacting contacts (a waiting contact would leave the field)");
   // (a thermal break: on the side where it broke, as advance(); at e = 0
   // the positive one.  A break at the threshold has |e| >= x_s > 0)
   const bool hot = !std::isnan(e_break) && exact;
@@ -225,6 +223,18 @@ double ContactModel::break_once(double *st, uint64_t tag, double e, double h, do
   if (thermal_on) {
     start_life(st, 0u);
     if (hot) st[CT_AGE] = age;
+  }
+  const double wait = leaves_field() ? delay_wait(tag, event) : 0.0;
+  if (wait > 0.0) {
+    // it leaves the field and waits (a thermal break `age` ago has waited
+    // that long: a wait shorter than that ends at the next step's start),
+    // its anchor at its atom; rejoin() re-forms it with force k r
+    st[CT_WAIT] = hot && exact ? std::max(wait - age, std::numeric_limits<double>::min()) : wait;
+    st[CT_PENDING] = sign * r;
+    st[CT_AGE] = 0.0;
+    st[CS_STRETCH] = st[CS_FORCE] = 0.0;
+    st[CS_ANCHOR] += s_old;
+    return 0.0;
   }
   const double target = sign * r + over;    // new force / k
   double s_new = target;
@@ -327,11 +337,7 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
       return res;
     }
     start_life(st, 0u);
-    const ThermalSpec &sp = thermal.params();
-    double wait = 0.0;
-    if (sp.delay == DelayKind::FIXED) wait = sp.tau;
-    if (sp.delay == DelayKind::EXPONENTIAL)
-      wait = sp.tau * exponential(draw(seed, tag, event, STREAM_DELAY));
+    const double wait = delay_wait(tag, event);
     f = fb;
     if (wait > 0.0) {
       st[CT_WAIT] = wait;
@@ -341,6 +347,27 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
       s_a = sign * r;
     }
   }
+}
+
+// the wait after break `event` (0: no delay)
+double ContactModel::delay_wait(uint64_t tag, uint64_t event) const
+{
+  const ThermalSpec &sp = thermal.params();
+  if (sp.delay == DelayKind::FIXED) return sp.tau;
+  if (sp.delay == DelayKind::EXPONENTIAL)
+    return sp.tau * exponential(draw(seed, tag, event, STREAM_DELAY));
+  return 0.0;
+}
+
+double ContactModel::rejoin(double *st, double m, double dt) const
+{
+  // the fraction of the step at which the delay ends, as advance()
+  double f = exact && dt > 0.0 ? st[CT_WAIT] / dt : 1.0;
+  if (!(f < 1.0)) f = 1.0;
+  const double s = st[CT_PENDING] + m * (1.0 - f);
+  st[CT_WAIT] = st[CT_PENDING] = 0.0;
+  st[CT_AGE] = (1.0 - f) * dt;
+  return s;
 }
 
 // a piece in which the stretch goes linearly from s_a to s_b and the age
@@ -561,7 +588,7 @@ namespace {
 inline bool over(const ContactModel &model, const double *st, double h, double tol)
 {
   const double th0 = st[CS_THRESHOLD];
-  if (th0 <= 0.0) return false;
+  if (th0 <= 0.0 || model.waiting(st)) return false;
   // below x_s0, below the aged threshold too (no A(age) to evaluate)
   if (std::fabs(st[CS_STRETCH] + h / st[CS_STIFFNESS]) < th0 - ContactModel::tolerance(st, tol))
     return false;
@@ -639,7 +666,7 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
     if (res.rounds == 1) res.trigger = all;
     res.size += all;
     res.local += static_cast<long>(list.size());
-    if (!model.reforms()) f = hooks.detached();
+    if (!model.reforms() || model.leaves_field()) f = hooks.detached();
     else f = hooks.changed(list.data(), static_cast<int>(list.size()), ds.data(), sums[1] == 0);
   }
   return res;

@@ -156,7 +156,8 @@ class ContactModel {
   // re-forms on that side, the motion since, e - e_break, carried, and
   // its life is `age` old; with crossing step at the end of the step, as
   // advance()); NaN: at its threshold (threshold_now()).  Returns the new
-  // stretch (0 when it detached for good: CS_THRESHOLD < 0).
+  // stretch (0 when it detached for good: CS_THRESHOLD < 0, or waits to
+  // re-form with a delay: leaves_field(), CT_WAIT > 0).
   double break_once(double *st, uint64_t tag, double e, double h, double K,
                     double e_break = NAN, double age = 0.0) const;
 
@@ -321,6 +322,27 @@ class ContactModel {
   bool reforms() const { return reform.dist != nullptr; }
   bool reform_as_force() const { return reform_force; }
 
+  // interacting contacts with a formation delay (delay fixed or exp with
+  // tau > 0): a broken contact leaves the field while it waits, and
+  // re-forms relaxed in the field of the contacts attached then
+  bool leaves_field() const
+  {
+    return thermal_on && thermal.params().delay != DelayKind::NONE && thermal.params().tau > 0.0;
+  }
+  // a formed contact waiting to re-form (thermal rows only)
+  bool waiting(const double *st) const
+  {
+    return thermal_on && st[CS_THRESHOLD] > 0.0 && st[CT_WAIT] > 0.0;
+  }
+  // an interacting contact whose delay ends within this step of dt
+  // (quick_wait() was false; m: its atom's motion in the step): it
+  // re-forms at that instant with crossing exact, the rest of the motion
+  // carried and its age the time since (at the end of the step with
+  // crossing step).  Returns its effective stretch at the end of the step
+  // (the stretch it re-forms with, plus the motion carried): the caller
+  // places it in the field of its partners
+  double rejoin(double *st, double m, double dt) const;
+
   // at most this many breaks of one contact within one step
   static constexpr int MAX_BREAKS_PER_STEP = 1000;
 
@@ -354,6 +376,8 @@ class ContactModel {
   double level(double x, double w, double xs) const;
   // the threshold's lower bound raised to xs (and the rate bound with it)
   void raise_xs_low(double *st, double xs) const;
+  // the wait after break `event` of contact `tag` (0: no delay)
+  double delay_wait(uint64_t tag, uint64_t event) const;
   // a piece of a step (see advance()): the crossing of the aged threshold,
   // and a thermal break before it
   bool threshold_crossing(const double *st, double s_a, double s_b, double a_a, double h,
@@ -401,7 +425,8 @@ class AvalancheHooks {
   // an incremental update follows it to rounding (false: recompute; the
   // same verdict on all ranks)
   virtual AvalancheField changed(const int *list, int n, const double *ds, bool exact) = 0;
-  // contacts detached for good: the field recomputed without them
+  // contacts detached for good, or broken and waiting to re-form
+  // (ContactModel::leaves_field()): the field recomputed without them
   virtual AvalancheField detached() = 0;
   virtual uint64_t tag(int i) const = 0;
 };
