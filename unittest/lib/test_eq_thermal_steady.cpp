@@ -293,6 +293,57 @@ TEST(ThermalSteady, TwoQuadraturesAgree)
   }
 }
 
+// contacts re-forming at 0.8, close to the thresholds above it, with
+// aging and barrier p = 2: right after formation the barrier is small and
+// the threshold rises over the aging length v tau_a = 1e-8, so that most
+// of a life's breaking happens in a burst within the first 1e-7 of its
+// slide.  The reference: an independent quadrature of the same model
+// (unittest/python/test_eq_thermal_reference.py,
+// test_burst_after_formation_with_aging: trapezoids on a grid graded
+// toward both ends of each life, Gauss-Legendre over x_s0, 1.8074669
+// with the grid doubled, 1.8074672 before; written apart from this
+// solver).  The march that started with panels of y*/16 missed the burst:
+// 1.7803
+TEST(ThermalSteady, BurstAfterFormationWithAging)
+{
+  ThermalSlider s = uniform_slider(0.02, 1e-8);
+  s.spec.p = 2.0;
+  s.r0 = 0.8;
+  log_aging(s, 0.1, 1.0);
+  EXPECT_NEAR(kinetic(s), 1.8074669, 1e-6);
+}
+
+// the hard cases of the march along a life (before: no convergence within
+// 2000000 panels, or the athermal F_k): a narrow zone of breaking just
+// before the break point (theta small for the velocity), lengths far from
+// 1 in their unit, strong aging with a short tau_a.  References: without
+// aging the lives' moments by adaptive quadrature of the closed-form
+// hazard of a linear path (tools/eqtools/interact_thermal.hazard(): the
+// incomplete gamma function), with aging trapezoids graded toward both
+// ends of each life (unittest/python/test_eq_thermal_reference.py,
+// test_hard_cases_of_the_steady_quadrature, which recomputes them: 1e-12
+// and 2e-8 relative; at 2 resolutions 6.870797804 and 6.870797874, whose
+// second-order extrapolation is 6.870797897)
+TEST(ThermalSteady, HardCasesOfTheLifeQuadrature)
+{
+  ThermalSlider a = uniform_slider(1e-5, 1e-12);
+  EXPECT_NEAR(kinetic(a), 0.508720059293, 1e-11);
+  ThermalSlider b = uniform_slider(1e-7, 1e-8);
+  EXPECT_NEAR(kinetic(b), 0.510375781222, 1e-11);
+  EXPECT_GT(0.5 * XS2 - kinetic(b), 4e-5);    // the athermal F_k: <x_s^2>/2
+  ThermalSlider c = uniform_slider(1e-4, 1e-12);
+  c.Pc = make_gaussian(1.0, 0.1, 0.0);
+  EXPECT_NEAR(kinetic(c), 0.496810990401, 1e-11);
+  ThermalSlider d = uniform_slider(0.02, 1e-4);
+  log_aging(d, 1.0, 1e-3);
+  EXPECT_NEAR(kinetic(d), 6.8707979, 2e-7);
+  // lengths in units of 100: F_k scales with them (the velocity with them)
+  ThermalSlider e = uniform_slider(0.02, 1e-2);
+  e.Pc = make_uniform(75.0, 125.0);
+  e.spec.xc = 100.0;
+  EXPECT_NEAR(kinetic(e), 100.0 * kinetic(uniform_slider(0.02, 1e-4)), 1e-12 * 100.0);
+}
+
 /* ---------------------------------------------------------------------- */
 // Transient F(X): the renewal equation on cells
 

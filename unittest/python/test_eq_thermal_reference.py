@@ -12,6 +12,7 @@ Every tolerance is derived in a comment next to it; all runs use fixed seeds.
 No LAMMPS: numpy only, a few seconds.
 """
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -298,3 +299,113 @@ def test_transient_numbers_of_the_note():
     for tw, peak in ((0.0, 0.920), (1e2, 0.948), (1e4, 1.096), (1e6, 1.268)):
         X, E, _ = th.discrete_transient_force(1e-2, 2e-3, 1000, t_w=tw, **AGING)
         assert abs(E.max() - peak) <= 0.5e-3 + 1e-7, tw
+
+
+def aged_force(n_log, n_lin, theta=0.02, p=2.0, beta=0.1, tau_a=1.0, v=1e-8, r0=0.8):
+    """F_k per contact with log aging (uniform [0.75, 1.25] thresholds,
+    those above |r0| when contacts re-form at r0), a quadrature of the
+    renewal mean written apart from eq-me's (lib/eq_thermal_steady): each
+    life's hazard by cumulative trapezoids on a grid graded geometrically
+    toward y = 0 (the aging length v tau_a, where the threshold rises
+    fastest) and toward its break point y*, plus n_lin even cells; the
+    thresholds by 24-point Gauss-Legendre on panels graded toward |r0|."""
+    from scipy import integrate, optimize
+    prm = th.make_params(theta=theta, p=p, aging="log", beta=beta, tau_a=tau_a)
+    A = lambda y: th.aging_factor(y / v, prm)
+
+    def life(xs0):
+        top = 10.0
+        while xs0 * A(top) - (r0 + top) > 0.0:
+            top *= 2.0
+        ys = optimize.brentq(lambda y: xs0 * A(y) - (r0 + y), 0.0, top, xtol=1e-15, rtol=1e-15)
+        g = np.concatenate([[0.0], np.geomspace(1e-6 * v * tau_a, ys, n_log),
+                            ys - np.geomspace(1e-9 * ys, ys, n_log), np.linspace(0.0, ys, n_lin)])
+        g = np.unique(g[(g >= 0.0) & (g <= ys)])
+        x, xs = r0 + g, xs0 * A(g)
+        nu = np.where(x < xs, th.rate(np.minimum(x, xs), xs, prm), 0.0)   # (at y*: its limit 0)
+        S = np.exp(-integrate.cumulative_trapezoid(nu / v, g, initial=0.0))
+        return integrate.trapezoid(S, g), integrate.trapezoid(x * S, g)
+
+    t, w = np.polynomial.legendre.leggauss(24)
+    lo = max(0.75, abs(r0))
+    edges = np.linspace(lo, 1.25, 9)
+    if abs(r0) >= 0.75:
+        edges = np.concatenate([[lo], lo + np.geomspace(1e-8, 0.05, 12),
+                                np.linspace(lo + 0.05, 1.25, 10)[1:]])
+    L = M = 0.0
+    for a, b in zip(edges[:-1], edges[1:]):
+        for xs0, wk in zip(0.5 * (a + b) + 0.5 * (b - a) * t, 0.5 * (b - a) * w):
+            l, m = life(xs0)
+            L, M = L + wk * l, M + wk * m
+    return M / L
+
+
+def test_burst_after_formation_with_aging():
+    """The reference of the lib test ThermalSteady.BurstAfterFormationWithAging
+    (test_eq_thermal_steady.cpp asserts eq-me's steady quadrature at
+    1.8074669 +- 1e-6; the march that missed the burst gave 1.7803): this
+    quadrature at two resolutions, whose trapezoids converge at second
+    order, so that their difference (measured 2.5e-7) bounds the finer
+    one's error by a third of it; both within 1e-6 of 1.8074669."""
+    coarse, fine = aged_force(3000, 20000), aged_force(6000, 40000)
+    print(f"burst: F_k {coarse:.9f} (coarse) {fine:.9f} (fine)")
+    assert abs(fine - coarse) < 5e-7
+    assert abs(fine - 1.8074669) < 1e-6 and abs(coarse - 1.8074669) < 1e-6
+
+
+def hazard_force(v, theta, pdf, lo, hi):
+    """F_k per contact without aging (r0 = 0), a quadrature apart from
+    eq-me's: each life's moments by adaptive quadrature of e^-H along e,
+    with H the closed-form hazard of a linear path
+    (eqtools.interact_thermal.hazard(): incomplete gamma functions), on
+    pieces graded geometrically toward the threshold; the thresholds by
+    12-point Gauss-Legendre on 8 panels."""
+    from scipy import integrate
+    from eqtools import interact_thermal as itm
+    prm = th.make_params(theta=theta)
+
+    def life(xs):
+        f = lambda e: float(np.exp(-itm.hazard(0.0, e, xs, v, prm)))
+        pts = np.concatenate([[0.0], xs * (1.0 - np.geomspace(0.5, 1e-12, 30)), [xs]])
+        L = M = 0.0
+        for a, b in zip(pts[:-1], pts[1:]):
+            L += integrate.quad(f, a, b, epsabs=0.0, epsrel=1e-11, limit=200)[0]
+            M += integrate.quad(lambda e: e * f(e), a, b, epsabs=0.0, epsrel=1e-11, limit=200)[0]
+        return L, M
+
+    t, w = np.polynomial.legendre.leggauss(12)
+    edges = np.linspace(lo, hi, 9)
+    L = M = 0.0
+    with warnings.catch_warnings():
+        # quad's roundoff notices where e^-H vanishes by the threshold
+        warnings.simplefilter("ignore", integrate.IntegrationWarning)
+        for a, b in zip(edges[:-1], edges[1:]):
+            for xs, wk in zip(0.5 * (a + b) + 0.5 * (b - a) * t, 0.5 * (b - a) * w):
+                l, m = life(xs)
+                L, M = L + wk * pdf(xs) * l, M + wk * pdf(xs) * m
+    return M / L
+
+
+def test_hard_cases_of_the_steady_quadrature():
+    """The references of the lib test ThermalSteady.HardCasesOfTheLifeQuadrature
+    (test_eq_thermal_steady.cpp asserts eq-me's steady quadrature at these
+    numbers; before, its march did not converge or returned the athermal
+    F_k): uniform thresholds at theta = 1e-5, v = 1e-12 (0.508720059293)
+    and theta = 1e-7, v = 1e-8 (0.510375781222), gaussian (1, 0.1) at
+    theta = 1e-4, v = 1e-12 (0.496810990401), by hazard_force(); measured
+    equal to 1e-12 with 48 nodes per panel, 70 pieces and relative 1e-13
+    (6 min), asserted to 2e-11 here.  Aging log 1 1e-3 at theta = 0.02,
+    v = 1e-4 by aged_force() at two resolutions (second order: their
+    difference, 7e-8, bounds the finer one's error by a third of it):
+    within 2e-7 of the lib test's 6.8707979."""
+    from scipy import stats
+    g = stats.norm(1.0, 0.1)
+    for got, ref in ((hazard_force(1e-12, 1e-5, lambda x: 2.0, 0.75, 1.25), 0.508720059293),
+                     (hazard_force(1e-8, 1e-7, lambda x: 2.0, 0.75, 1.25), 0.510375781222),
+                     (hazard_force(1e-12, 1e-4, g.pdf, 0.1, 1.9), 0.496810990401)):
+        print(f"hard case: F_k {got:.12f} (lib test {ref})")
+        assert abs(got - ref) < 2e-11
+    kw = dict(theta=0.02, p=0.0, beta=1.0, tau_a=1e-3, v=1e-4, r0=0.0)
+    coarse, fine = aged_force(3000, 20000, **kw), aged_force(6000, 40000, **kw)
+    print(f"hard case, aging: F_k {coarse:.9f} (coarse) {fine:.9f} (fine)")
+    assert abs(fine - coarse) < 2e-7 and abs(fine - 6.8707979) < 2e-7

@@ -41,10 +41,6 @@ def test_usage(tmp_path):
     (["threshold", "realistic", 1, "xmax", 2, "snapshot", 3, "q.dat"], "snapshot: X = 3.000000 outside [0, xmax]"),
     (["threshold", "table", "nofile.table", "K"], "threshold table: cannot open table file 'nofile.table'"),
     (["threshold", "realistic", 1, "force", "/no/such/dir/f.dat"], "cannot write file '/no/such/dir/f.dat'"),
-    # a known limit of the steady quadrature (doc of eq/me, Restrictions): an
-    # error within seconds, not a hang
-    (["threshold", "uniform", 75, 125, "xmax", 200, "dx", 0.1, "thermal", 0.02, 1, 1, "velocity", 1e-2],
-     "thermal: the steady state's quadrature of one contact life (threshold"),
 ])
 def test_errors_name_the_keyword(tmp_path, args, message):
     p = eqme(args, tmp_path)

@@ -53,10 +53,9 @@ const int CUT_STEPS = 32;
 const double KINK_NEGLIGIBLE = 1e-14;
 // the most a panel of a life may add to the hazard H
 const double DH_PANEL = 2.0;
-// a life's march that needs more panels than this does not converge
-// (its acceptance test is absolute: see ContactLife::moments()); a
-// converging one takes tens to hundreds of panels, a few lives in the
-// gaussian tails at small theta some hundred thousand
+// a life's march that needs more panels than this stops with an error (a
+// guard: a life takes tens to hundreds of panels, no known case more
+// than some thousand since the grading of ContactLife::moments())
 const long MAX_LIFE_PANELS = 2000000;
 
 /* ---------------------------------------------------------------------- */
@@ -363,6 +362,34 @@ template <class Rate> Panel life_panel(const Rate &rate, double r0, double a, do
 
 }    // namespace
 
+// where the barrier at the break point's threshold x_s falls to
+// ln(omega x_s / v), the level where a contact breaks within a slide of
+// the order of x_s: u_z = (theta ln(omega x_s/v) / (x_s/x_c)^p)^(2/3).  The
+// zone of breaking before the break point is a few u_z x_s wide; 0 where
+// that is the whole life (T large for the velocity)
+double ContactLife::zone_start(double xs0, double ys) const
+{
+  const ThermalSpec &sp = model.params();
+  const double xs = xs0 * factor(ys);
+  const double level = std::log(sp.omega * xs / v);
+  if (!(level > 0.0)) return 0.0;
+  const double scale = sp.p != 0.0 ? std::pow(xs / sp.xc, sp.p) : 1.0;
+  const double width = 4.0 * std::pow(sp.theta * level / scale, 2.0 / 3.0) * xs;
+  return width < ys ? ys - width : 0.0;
+}
+
+// the relative rounding of the rate at y: u = 1 - x/x_s loses eps/u, and
+// the barrier B = ln(omega/nu) multiplies a relative change of u by 1.5 B
+double ContactLife::rate_noise(double y, double xs0) const
+{
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double xs = xs0 * factor(y);
+  const double u = 1.0 - std::fabs(r0 + y) / xs;
+  const double nu = v * rate(y, xs0);
+  const double B = nu > 0.0 ? std::fmax(0.0, std::log(model.params().omega / nu)) : 0.0;
+  return 64.0 * eps * (1.0 + 1.5 * B / std::fmax(u, eps));
+}
+
 // Marches along y in panels: a panel is accepted when H grows by at most
 // DH_PANEL over it (so that its nodes see e^-H fall) and its two halves
 // agree with it: the moments, and H weighted by what is left to survive
@@ -377,35 +404,48 @@ void ContactLife::moments(double xs0, double &L, double &M) const
   }
   auto nu = [&](double y) { return rate(y, xs0); };
   L = M = 0.0;
-  double a = 0.0, H = 0.0, h = ys / 16.0;
+  // the first panel within the aging length v (tau_a + age0), over which
+  // the threshold rises fastest: a burst of breaking right after formation
+  // (re-forming close to the threshold) lives there; the march then
+  // doubles the panels where they are accurate.  It lands on the start
+  // of the zone of breaking before the break point, yz, and enters it
+  // with panels of the zone's width
+  double a = 0.0, H = 0.0, h = std::min(ys / 16.0, aging_length());
+  const double yz = zone_start(xs0, ys);
   const double hmin = 1e-13 * ys;
+  const double scale = std::fmax(1.0, ys + std::fabs(r0));
   long panels = 0;
   while (a < ys && H < H_CUT) {
     if (++panels > MAX_LIFE_PANELS)
       throw SpecError("thermal: the steady state's quadrature of one contact life (threshold " +
                       format_number(xs0, 6) + ", theta " + format_number(model.params().theta, 6) +
                       ", velocity " + format_number(v, 6) + ") does not converge within " +
-                      std::to_string(MAX_LIFE_PANELS) + " panels (a known limit of this quadrature: "
-                      "very small theta for the velocity, strong aging with a short tau_a, or "
-                      "stretches far from 1 in the length unit: express the lengths in units "
-                      "of the mean threshold)");
+                      std::to_string(MAX_LIFE_PANELS) + " panels (not known to happen: please "
+                      "report these parameters; lengths in units of the mean threshold may help)");
     double b = a + h;
     if (b > ys - 0.01 * h) b = ys;
+    if (a < yz && b > yz) b = yz;
     const double m = 0.5 * (a + b);
     const Panel one = life_panel(nu, r0, a, b, H);
     const Panel p1 = life_panel(nu, r0, a, m, H);
     const Panel p2 = life_panel(nu, r0, m, b, H + p1.dH);
     const double dH = p1.dH + p2.dH;
     const double rest = std::min(ys - b, 1.0 / std::max(nu(b), 1e-300));
+    // the two halves' hazards differ by the rate's own rounding at least
+    // (rate_noise()): only what is beyond it counts
+    const double ddH = std::fmax(0.0, std::fabs(one.dH - dH) - rate_noise(b, xs0) * dH);
     const double err = std::fabs(one.L - p1.L - p2.L) + std::fabs(one.M - p1.M - p2.M) +
-        std::exp(-H - dH) * rest * (1.0 + ys) * std::fabs(one.dH - dH);
-    const double allowed = TOL_LIFE * (b - a);
+        std::exp(-H - dH) * rest * (1.0 + ys) * ddH;
+    // per unit length of the life's own scale (lengths far from 1 in
+    // their unit ask for the same relative accuracy)
+    const double allowed = TOL_LIFE * (b - a) * scale;
     if (b - a > hmin && one.dH > DH_PANEL) {
       h = 0.5 * (b - a);
     } else if (err <= allowed || b - a <= hmin) {
       L += p1.L + p2.L;
       M += p1.M + p2.M;
       H += dH;
+      if (a < yz && b == yz) h = std::min(h, (ys - yz) / 16.0);
       a = b;
       if (err < allowed / 64.0) h *= 2.0;
     } else {

@@ -73,6 +73,7 @@
 #include "eq_master_equation.h"
 #include "eq_thermal.h"
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -121,7 +122,16 @@ class ContactLife {
   bool point;
 
   double factor(double y) const { return model.factor(age0 + y / v); }
+  // the slide over which the threshold's aging is fastest at formation,
+  // v (tau_a + age0) (infinite without aging)
+  double aging_length() const
+  {
+    return model.params().aging == AgingLaw::NONE ? std::numeric_limits<double>::infinity()
+                                                  : v * (model.params().tau_a + age0);
+  }
   double rate(double y, double xs0) const { return model.rate(r0 + y, xs0 * factor(y)) / v; }
+  double zone_start(double xs0, double ys) const;
+  double rate_noise(double y, double xs0) const;
 };
 
 struct ThermalSteady {
