@@ -337,11 +337,30 @@ TEST(ThermalSteady, HardCasesOfTheLifeQuadrature)
   ThermalSlider d = uniform_slider(0.02, 1e-4);
   log_aging(d, 1.0, 1e-3);
   EXPECT_NEAR(kinetic(d), 6.8707979, 2e-7);
+  // an aging length v tau_a = 1e-17 below the smallest panel (the march
+  // stayed at that panel: no result within minutes); reference
+  // eqtools.thermal.steady_force() (22.44729567275972, the same with its
+  // grids refined)
+  ThermalSlider a9 = uniform_slider(1e-9, 1e-14);
+  log_aging(a9, 1.0, 1e-3);
+  EXPECT_NEAR(kinetic(a9), 22.44729567276, 1e-9);
   // lengths in units of 100: F_k scales with them (the velocity with them)
   ThermalSlider e = uniform_slider(0.02, 1e-2);
   e.Pc = make_uniform(75.0, 125.0);
   e.spec.xc = 100.0;
   EXPECT_NEAR(kinetic(e), 100.0 * kinetic(uniform_slider(0.02, 1e-4)), 1e-12 * 100.0);
+  // lifetimes far below 1: creep (v far below omega x_c e^{-1/theta}) with
+  // gaussian thresholds, whose average is not exact on the first panels
+  // (the average's tolerance was absolute: lifetime 2.79136e-13, 0.4 %
+  // off): L = v/nu0, F_k = (v/nu0)/(1 + nu0 tau), nu0 = omega e^{-1/theta}
+  // (the rate changes by ~1e-11 over a life this short)
+  ThermalSlider f = uniform_slider(0.3, 1e-14);
+  f.Pc = make_gaussian(1.0, 0.1, 0.0);
+  delay(f, DelayKind::EXPONENTIAL, 10.0);
+  const ThermalSteady sf = thermal_steady_state(f);
+  const double nu0 = std::exp(-1.0 / 0.3), L = 1e-14 / nu0;
+  EXPECT_NEAR(sf.lifetime, L, 1e-9 * L);
+  EXPECT_NEAR(sf.F, L / (1.0 + nu0 * 10.0), 1e-9 * L);
 }
 
 /* ---------------------------------------------------------------------- */

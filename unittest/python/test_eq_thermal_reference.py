@@ -397,7 +397,8 @@ def test_hard_cases_of_the_steady_quadrature():
     (6 min), asserted to 2e-11 here.  Aging log 1 1e-3 at theta = 0.02,
     v = 1e-4 by aged_force() at two resolutions (second order: their
     difference, 7e-8, bounds the finer one's error by a third of it):
-    within 2e-7 of the lib test's 6.8707979."""
+    within 2e-7 of the lib test's 6.8707979; theta = 1e-9, aging log 1
+    1e-3 at v = 1e-14 by steady_force() (22.44729567276)."""
     from scipy import stats
     g = stats.norm(1.0, 0.1)
     for got, ref in ((hazard_force(1e-12, 1e-5, lambda x: 2.0, 0.75, 1.25), 0.508720059293),
@@ -405,6 +406,11 @@ def test_hard_cases_of_the_steady_quadrature():
                      (hazard_force(1e-12, 1e-4, g.pdf, 0.1, 1.9), 0.496810990401)):
         print(f"hard case: F_k {got:.12f} (lib test {ref})")
         assert abs(got - ref) < 2e-11
+    # theta = 1e-9 with the aging length v tau_a = 1e-17: this module's
+    # steady quadrature, its grids refined
+    for grids in (dict(), dict(n=24, res=2, nthr=24)):
+        assert th.steady_force(1e-14, theta=1e-9, aging="log", beta=1.0, tau_a=1e-3, **grids) == \
+            pytest.approx(22.44729567276, abs=1e-9)
     kw = dict(theta=0.02, p=0.0, beta=1.0, tau_a=1e-3, v=1e-4, r0=0.0)
     coarse, fine = aged_force(3000, 20000, **kw), aged_force(6000, 40000, **kw)
     print(f"hard case, aging: F_k {coarse:.9f} (coarse) {fine:.9f} (fine)")

@@ -38,9 +38,9 @@ const double PI = 3.14159265358979323846;
 const double TAIL = 1e-18;
 // a hazard beyond this survives with e^-60 ~ 1e-26: taken as broken
 const double H_CUT = 60.0;
-// absolute tolerances: the hazard (per quadrature), the survival of one
-// y (over the thresholds), the moments of one life per unit length, and
-// the moments averaged over the thresholds
+// tolerances: the hazard (per quadrature), the survival of one y (over
+// the thresholds), the moments of one life per unit length (of the
+// life's scale), and the moments averaged over the thresholds (relative)
 const double TOL_H = 1e-13;
 const double TOL_S = 1e-12;
 const double TOL_LIFE = 1e-13;
@@ -410,9 +410,9 @@ void ContactLife::moments(double xs0, double &L, double &M) const
   // doubles the panels where they are accurate.  It lands on the start
   // of the zone of breaking before the break point, yz, and enters it
   // with panels of the zone's width
-  double a = 0.0, H = 0.0, h = std::min(ys / 16.0, aging_length());
-  const double yz = zone_start(xs0, ys);
   const double hmin = 1e-13 * ys;
+  double a = 0.0, H = 0.0, h = std::fmax(hmin, std::fmin(ys / 16.0, aging_length()));
+  const double yz = zone_start(xs0, ys);
   const double scale = std::fmax(1.0, ys + std::fabs(r0));
   long panels = 0;
   while (a < ys && H < H_CUT) {
@@ -446,8 +446,9 @@ void ContactLife::moments(double xs0, double &L, double &M) const
       M += p1.M + p2.M;
       H += dH;
       if (a < yz && b == yz) h = std::min(h, (ys - yz) / 16.0);
+      // (a panel taken at the smallest width is no reason to stay there)
+      if (err < allowed / 64.0 || b - a <= hmin) h *= 2.0;
       a = b;
-      if (err < allowed / 64.0) h *= 2.0;
     } else {
       h = 0.5 * (b - a);
     }
@@ -473,7 +474,9 @@ ThermalSteady thermal_steady_state(const ThermalSlider &s)
       r[1] *= p;
       return r;
     };
-    auto tol = [](const Vec<2> &) { return TOL_STEADY; };
+    // relative: lifetimes far below 1 (activation long before the
+    // threshold at small velocities) ask for the same accuracy
+    auto tol = [](const Vec<2> &I) { return TOL_STEADY * (std::fabs(I[0]) + std::fabs(I[1])); };
     LM = adaptive<2>(f, pts, tol, MAX_INTERVALS + pts.size());
     LM[0] /= life.weight_norm();
     LM[1] /= life.weight_norm();
