@@ -88,6 +88,10 @@ class Case:
     files: dict = dataclasses.field(default_factory=dict)   # name -> str or bytes
     np: int = 1
     note: str = ""
+    # the runner's time limit (a hang) is this many times its default: a
+    # case whose expected end is a long computation (an avalanche of
+    # 100000 rounds on 2 oversubscribed ranks)
+    budget: float = 1.0
 
     def write(self, folder):
         folder = Path(folder)
@@ -1449,7 +1453,7 @@ def run_case(case, lmp, timeout=20.0, mpirun="mpirun", keep=None, tmp_root=None)
                                     stdin=subprocess.DEVNULL, env=run_env(case.np, folder),
                                     start_new_session=True)
             try:
-                raw, _ = proc.communicate(timeout=timeout)
+                raw, _ = proc.communicate(timeout=timeout * case.budget)
             except subprocess.TimeoutExpired:
                 timed_out = True
                 try:
