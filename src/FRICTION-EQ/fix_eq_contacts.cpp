@@ -934,7 +934,7 @@ void FixEQContacts::rejoin(Hooks &hooks)
     st[CS_STRETCH] += ds;
     st[CS_ANCHOR] -= ds;
     dsv[i] = ds;
-    if (!(std::fabs(ds) <= feq::AVALANCHE_CHANGE_MAX * (1.0 + std::fabs(st[CS_STRETCH])))) ++big;
+    if (!change_followable(ds, st[CS_STRETCH])) ++big;
   }
   hooks.global_sum(&big, 1);
   hooks.changed(joins.data(), static_cast<int>(joins.size()), dsv.data(), big == 0);

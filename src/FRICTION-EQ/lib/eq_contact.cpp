@@ -649,7 +649,7 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
       const bool th = hot && !std::isnan(hot[i]);
       ds[i] = model.break_once(st, hooks.tag(i), e, h, f.k[i], th ? hot[i] : NAN,
                                th ? thermal_age[i] : 0.0) - s_old;
-      if (!(std::fabs(ds[i]) <= AVALANCHE_CHANGE_MAX * (1.0 + std::fabs(st[CS_STRETCH])))) ++sums[1];
+      if (!change_followable(ds[i], st[CS_STRETCH])) ++sums[1];
     }
     hooks.global_sum(sums, 2);
     const long all = sums[0];

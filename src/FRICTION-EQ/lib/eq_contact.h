@@ -459,6 +459,11 @@ constexpr int AVALANCHE_MAX_ROUNDS = 100000;
 // leads to (plus 1) leaves more than rounding in a field updated
 // incrementally (a stretch of 1e300 that breaks to 0.3)
 constexpr double AVALANCHE_CHANGE_MAX = 1.0e6;
+// a change ds of a stretch to s_new that an incremental field follows to rounding
+inline bool change_followable(double ds, double s_new)
+{
+  return std::fabs(ds) <= AVALANCHE_CHANGE_MAX * (1.0 + std::fabs(s_new));
+}
 
 }    // namespace feq
 
