@@ -59,12 +59,18 @@ namespace LAMMPS_NS {
 // avalanche round): local atoms list[0..n), by dq[list[m]].  exact: the
 // source found every change, on every rank, small enough for an
 // incremental update to follow to rounding (false: the field recomputes;
-// the verdict is the same on all ranks, so that all take the same path)
+// the verdict is the same on all ranks, so that all take the same path).
+// members: instead, the atoms of list joined the coupled set (their
+// coordinate, source_coordinates(), is no longer NaN) or left it (it is
+// NaN now): contacts that wait to re-form after a break, and re-form
+// (dq unused); exact then says that every coordinate involved is small
+// enough for the partners' fields to follow it incrementally
 struct EQChangeSet {
   const int *list = nullptr;
   int n = 0;
   const double *dq = nullptr;
   bool exact = true;
+  bool members = false;
 };
 
 class EQCoordinateSource {
@@ -94,7 +100,10 @@ class EQCoordinateSource {
   // the coordinates of the local atoms now (NaN: not coupled)
   virtual const double *source_coordinates() = 0;
   // the change from version `since` to the current one, if it is one
-  // change set at fixed positions; false: recompute from the coordinates
+  // change set at fixed positions; false: recompute from the coordinates.
+  // A set of members may also come with a new evaluation: the atoms not
+  // in it moved with the positions, those in it joined or left the field
+  // there
   virtual bool source_changes(bigint since, EQChangeSet &set) const = 0;
 };
 

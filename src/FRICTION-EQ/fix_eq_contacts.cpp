@@ -85,10 +85,11 @@ class FixEQContacts::Hooks : public AvalancheHooks {
     fix->record_changes(list, n, ds, exact);
     return pull();
   }
-  // contacts detached for good: the field without them, at fixed positions
-  AvalancheField detached() override
+  // contacts detached for good or waiting: the field without them, at
+  // fixed positions
+  AvalancheField detached(const int *list, int n, bool exact) override
   {
-    fix->record_detached();
+    fix->record_members(list, n, exact);
     return pull();
   }
   uint64_t tag(int i) const override { return static_cast<uint64_t>(tags[i]); }
@@ -795,21 +796,31 @@ void FixEQContacts::record_changes(const int *list, int n, const double *ds, boo
   // the size of the change)
   for (int m = 0; m < n; m++) qbuf[list[m]] = state[list[m]][CS_STRETCH];
   broke.insert(broke.end(), list, list + n);
+  new_version(list, n, ds, exact, false);
+}
+
+// the change set of a new version (valid until the next one)
+void FixEQContacts::new_version(const int *list, int n, const double *dq, bool exact,
+                                bool members_changed)
+{
   chg.list = list;
   chg.n = n;
-  chg.dq = ds;
+  chg.dq = dq;
   chg.exact = exact;
+  chg.members = members_changed;
   chg_from = nversion++;
 }
 
-// contacts detached for good or waiting to re-form leave the field: not
-// a change set
-void FixEQContacts::record_detached()
+// contacts list[0..n) left the field (detached for good, or waiting to
+// re-form) or joined it (re-formed after their delay): a set of members
+// (their coordinates become NaN, or the stretch they joined with)
+void FixEQContacts::record_members(const int *list, int n, bool exact)
 {
-  double *const *st = state;
-  for (const int i : members) qbuf[i] = attached(st[i]) ? st[i][CS_STRETCH] : NOT_A_CONTACT;
-  chg_from = -1;
-  ++nversion;
+  for (int m = 0; m < n; m++) {
+    const int i = list[m];
+    qbuf[i] = attached(state[i]) ? state[i][CS_STRETCH] : NOT_A_CONTACT;
+  }
+  new_version(list, n, nullptr, exact, true);
 }
 
 // dt: the time of the step (0 at the set-up of a run and in minimization)
@@ -884,8 +895,8 @@ void FixEQContacts::new_run()
    whose wait ends within the step re-forms (ContactModel::rejoin()) with
    the stretch it is to have at the end of the step without a field, and
    is listed in joins.  rejoin(), on every rank: if any contact joined,
-   the field is recomputed with them (a new version that is not a change
-   set), then with reform_as force each joiner's stretch is solved in
+   they join the field (a set of members: their partners' fields follow
+   them, pair eq/elastic), then with reform_as force each joiner's stretch is solved in
    the field of its partners, k e = k (r + motion since), e = s + h/k:
    s = (k s0 + K s0 - h)/(k + K), a change set at fixed positions (with
    reform_as stretch it keeps s0).
@@ -916,11 +927,14 @@ void FixEQContacts::count_down(double dt)
 
 void FixEQContacts::rejoin(Hooks &hooks)
 {
-  long n = static_cast<long>(joins.size());
-  hooks.global_sum(&n, 1);
-  if (n == 0) return;
-  chg_from = -1;    // the set of coupled atoms changed: the field recomputes
-  ++nversion;
+  // how many join, and how many with a stretch an incremental field
+  // cannot follow (as avalanche()), over all ranks
+  long n[2] = {static_cast<long>(joins.size()), 0};
+  for (const int i : joins)
+    if (!change_followable(qbuf[i], 0.0)) ++n[1];
+  hooks.global_sum(n, 2);
+  if (n[0] == 0) return;
+  record_members(joins.data(), static_cast<int>(joins.size()), n[1] == 0);
   const feq::AvalancheField f = hooks.field();
   if (!model->reform_as_force()) return;
   int top = -1;

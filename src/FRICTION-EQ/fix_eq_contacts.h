@@ -157,7 +157,8 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void count_down(double dt);
   void rejoin(Hooks &hooks);
   void record_changes(const int *list, int n, const double *ds, bool exact);
-  void record_detached();
+  void record_members(const int *list, int n, bool exact);
+  void new_version(const int *list, int n, const double *dq, bool exact, bool members_changed);
   void apply(bool allow_breaks);
   template <bool ORTHOGONAL> long scan(const EQUtil::Unwrap &unwrap, bool allow_breaks);
   bool attached(const double *st) const;

@@ -110,9 +110,10 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
     Pair(lmp), check_every(CHECK_DEFAULT), cut(nullptr), cutsq_in(nullptr), ftilde(nullptr),
     lambda(nullptr), kidx(nullptr), mixed(nullptr), anisotropic(0), ncoeff(0), ncoeff_init(0),
     idir(0), site_distance(false), nmax(0), q(nullptr), w(nullptr), h(nullptr), ksum(nullptr),
-    dh(nullptr), xq(nullptr), mom(nullptr), key(), key_set(false), eval_seen(-1),
-    version_seen(-1), ghost_version(-1), eval_computed(-1), eval_built(-1), pending(0), nfield(0),
-    vir_at(-1), comm_mode(COMM_ALL), gsorted(true), changed_at(-1)
+    dh(nullptr), dk(nullptr), xq(nullptr), mom(nullptr), member_bit(0), key(), key_set(false),
+    eval_seen(-1), version_seen(-1), ghost_version(-1), eval_computed(-1), eval_built(-1),
+    pending(0), nfield(0), vir_at(-1), mom_valid(false), comm_mode(COMM_ALL), gsorted(true),
+    changed_at(-1), smark_ghosts(false)
 {
   EQCite::add(lmp);
   single_enable = 1;
@@ -131,12 +132,14 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
   manybody_flag = 0;
   no_virial_fdotr_compute = 1;    // forces on local atoms only (full list)
   // sparse exchanges (changed ghosts, scattered shares): a count, then
-  // (index, value) pairs, at most 1 + 2 n values for n atoms
+  // (index, value) pairs, at most 1 + 2 n values for n atoms; the shares
+  // of a change of members: (index, share of K, share of h) triples
   comm_forward = 3;
-  comm_reverse = 3;
+  comm_reverse = 4;
   cut_global = 0.0;
   wvir[0] = wvir[1] = wvir[2] = 0.0;
   n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = n_joined = 0;
+  n_members = 0;
   drift_max = hscale_max = 0.0;
 }
 
@@ -149,6 +152,7 @@ PairEQElastic::~PairEQElastic()
   memory->destroy(h);
   memory->destroy(ksum);
   memory->destroy(dh);
+  memory->destroy(dk);
   memory->sfree(mom);
   if (allocated) {
     memory->destroy(setflag);
@@ -202,11 +206,16 @@ void PairEQElastic::grow()
   memory->create(w, nmax, "pair:w");
   memory->create(h, nmax, "pair:h");
   memory->create(ksum, nmax, "pair:ksum");
+  memory->destroy(dk);
   memory->create(dh, nmax, "pair:dh");
+  memory->create(dk, nmax, "pair:dk");
   memset(dh, 0, nmax * sizeof(double));
+  memset(dk, 0, nmax * sizeof(double));
   tmark.assign(nmax, 0);
   cmark.assign(nmax, 0);
   csync.clear();
+  smark.assign(nmax, 0);
+  smarked.clear();
   mom = static_cast<double(*)[3]>(memory->smalloc(sizeof(double[3]) * nmax, "pair:mom"));
   key_set = false;    // the arrays hold nothing now
 }
@@ -523,6 +532,7 @@ void PairEQElastic::refresh()
                       "every M) is not supported: the kernels and cutoffs are set up when a run "
                       "starts; use pre yes");
   grow();
+  member_bit = site_distance ? 0 : src->source_groupbit();
   const bigint eval = src->source_evaluation();
   const bigint version = src->source_version();
   const Key now = key_now();
@@ -544,28 +554,49 @@ void PairEQElastic::refresh()
     return;
   }
   if (eval != eval_seen) {    // the positions may have moved
-    // and the set of coupled atoms changed with them (a new version that
-    // is not a change set: contacts that end their formation delay)
+    // and contacts may have joined the field there (a set of members: the
+    // end of formation delays); a new version that is neither: recompute
     EQChangeSet set;
-    const bool members = version != version_seen && !src->source_changes(version_seen, set);
+    const bool newer = version != version_seen;
+    const bool one_set = newer && src->source_changes(version_seen, set);
+    const bool joins = one_set && set.members;
     eval_seen = eval;
     version_seen = version;
     ++n_update;
-    if (members) {
+    if ((newer && !one_set) || (joins && !set.exact)) {
       ++n_joined;
       recompute(src);
-    }
-    else if (check_every > 0 && n_update % check_every == 0) drift_check(src);
-    else follow(src);
+    } else if (check_every > 0 && n_update % check_every == 0)
+      drift_check(src, joins ? &set : nullptr);
+    else
+      update(src, joins ? &set : nullptr, true);
     return;
   }
   if (version != version_seen) {    // changes at fixed positions
     EQChangeSet set;
     const bool one_set = src->source_changes(version_seen, set);
     version_seen = version;
-    if (one_set && set.exact) scatter(set);
-    else recompute(src);    // the set of coupled atoms changed, or changes too large
+    if (!one_set || !set.exact) {    // the set of coupled atoms changed, or changes too large
+      if (!one_set || set.members) ++n_joined;
+      recompute(src);
+    } else if (set.members)
+      change_members(src, set);
+    else
+      scatter(set);
   }
+}
+
+// a new evaluation: the positions (follow()), then the members that
+// joined or left there (set, or nullptr)
+void PairEQElastic::update(EQCoordinateSource *src, const EQChangeSet *set, bool count)
+{
+  if (!set) {
+    follow(src, count);
+    return;
+  }
+  for (int m = 0; m < set->n; m++) mark_member(set->list[m]);
+  follow(src, count);    // the members of the set as they were
+  change_members(src, *set);
 }
 
 // everything from the source's coordinates (ghosts from their owners)
@@ -617,11 +648,13 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
 {
   double **x = atom->x;
   const int *type = atom->type;
+  const int *mask = atom->mask;
   const tagint *tag = atom->tag;
   const double *special_lj = force->special_lj;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const int d = idir;
+  const int mbit = member_bit;
   // the coupled ghosts of the lists: from the owners at a list build (and
   // after breaks), else from x - w (glist is that of the same list)
   if (fresh_ghosts) {
@@ -654,7 +687,8 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
     const int i = ilist[ii];
     first[2 * i] = static_cast<int>(pj.size());
     const double qi = q[i];
-    if (std::isnan(qi)) {
+    const bool coupled_i = !std::isnan(qi);
+    if (!coupled_i && !(mask[i] & mbit)) {
       first[2 * i + 1] = static_cast<int>(pj.size());
       continue;
     }
@@ -667,7 +701,8 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
       const double factor = special_lj[sbmask(j)];
       j &= NEIGHMASK;
       const double qj = q[j];
-      if (std::isnan(qj)) continue;
+      const bool coupled_j = !std::isnan(qj);
+      if (!coupled_j && !(mask[j] & mbit)) continue;
       if (fresh_ghosts && j >= nlocal) gmark[j - nlocal] = 1;
       // a periodic image of the atom itself is the same contact or block:
       // no interaction (it would only enter K_i and the re-forming of a
@@ -682,6 +717,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
       const double k = factor * kval(itype, jtype, rsq, del);
       pj.push_back(j);
       pk.push_back(k);
+      if (!coupled_i || !coupled_j) continue;    // a pair cached for a change of members
       const double dq = qi - qj;
       if (site_distance && k != 0.0 && std::fabs(dq) > dubig) {
         dubig = std::fabs(dq);
@@ -707,6 +743,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
     for (int i = nlocal; i < nall; i++)
       if (gmark[i - nlocal]) glist.push_back(i);
   ++nfield;
+  mom_valid = true;
   virial_now();
   // blocks: a coupled pair stays in the list while the displacements of
   // its blocks differ by less than the skin (see site_field())
@@ -714,8 +751,18 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
 }
 
 // this rank's share of the virial, (1/2) sum_j del_a f_j along dir with
-// f = -k (q_i - q_j), from the pairs (the moments alone do not give it)
+// f = -k (q_i - q_j), from the pairs (the moments alone do not give it);
+// after a change of members the moments too
 void PairEQElastic::virial_now()
+{
+  if (mom_valid) virial_pairs<false>();
+  else virial_pairs<true>();
+  mom_valid = true;
+  vir_at = nfield;
+  vir_pending.clear();
+}
+
+template <bool MOMENTS> void PairEQElastic::virial_pairs()
 {
   double **x = atom->x;
   const int nlocal = atom->nlocal;
@@ -723,21 +770,31 @@ void PairEQElastic::virial_now()
   for (int i = 0; i < nlocal; i++) {
     const double qi = q[i];
     if (std::isnan(qi)) continue;
+    double m0 = 0.0, m1 = 0.0, m2 = 0.0;
     for (int m = first[2 * i]; m < first[2 * i + 1]; m++) {
       const int j = pj[m];
+      if (std::isnan(q[j])) continue;    // not coupled now (cached for a change of members)
       const double dq = qi - q[j], fd = -pk[m] * dq;
       double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
       if (site_distance) del[idir] -= dq;
       vir[0] += 0.5 * del[0] * fd;
       vir[1] += 0.5 * del[1] * fd;
       vir[2] += 0.5 * del[2] * fd;
+      if (MOMENTS) {
+        m0 += pk[m] * del[0];
+        m1 += pk[m] * del[1];
+        m2 += pk[m] * del[2];
+      }
+    }
+    if (MOMENTS) {
+      mom[i][0] = m0;
+      mom[i][1] = m1;
+      mom[i][2] = m2;
     }
   }
   wvir[0] = vir[0];
   wvir[1] = vir[1];
   wvir[2] = vir[2];
-  vir_at = nfield;
-  vir_pending.clear();
 }
 
 void PairEQElastic::skin_error(int i, int j, double du)
@@ -784,25 +841,39 @@ void PairEQElastic::follow(EQCoordinateSource *src, bool count)
   }
   const double *qin = src->source_coordinates();
   double **x = atom->x;
+  const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int d = idir;
+  const int mbit = member_bit;
 
-  // displacements since the last update of every coupled atom this rank
-  // holds, along every direction (motion across dir changes the k_ij of
-  // contacts); the set of coupled atoms changes only with the key or a
-  // new version that is not a change set
+  // displacements since the last update of every atom of the cached pairs
+  // this rank holds (coupled, or a member that may join), along every
+  // direction (motion across dir changes the k_ij of contacts); the set
+  // of coupled atoms changes only with the key, a set of members (marked:
+  // applied after this by change_members(), which needs the q before) or
+  // a new version that is not a change set
   Spread spread;
-  int changed = -1;
+  int changed = -1, nchanged = 0;
   for (int i = 0; i < nlocal; i++) {
     const double qi = qin[i];
     if (std::isnan(q[i])) {
-      if (!std::isnan(qi)) changed = i;
+      if (!std::isnan(qi)) {
+        changed = i;
+        ++nchanged;
+      }
+      if (mask[i] & mbit) spread.add(x[i], xq[i]);
       continue;
     }
-    if (std::isnan(qi)) changed = i;
     spread.add(x[i], xq[i]);
+    if (FEQ_UNLIKELY(std::isnan(qi))) {
+      changed = i;
+      ++nchanged;
+      continue;
+    }
     q[i] = qi;
   }
+  // the changes of a set of members are expected (all of them, none else)
+  if (nchanged > 0 && nchanged == expected_changes(qin)) changed = -1;
   if (changed >= 0 && !std::isfinite(x[changed][d]))    // a NaN stretch looks uncoupled
     error->one(FLERR, "Pair eq/elastic: position of atom {} of {} is {} (numerical instability: "
                       "check the timestep, the forces and the integrator)",
@@ -825,6 +896,16 @@ void PairEQElastic::follow(EQCoordinateSource *src, bool count)
     if (count) ++n_nonuniform;
     rebuild(false);    // k_ij at the atoms' new distances
   }
+}
+
+// the local atoms of the marked set of members whose coordinate turned
+// NaN or stopped being NaN (the changes follow() may see)
+int PairEQElastic::expected_changes(const double *qin) const
+{
+  int n = 0;
+  for (const int i : smarked)
+    if (i < atom->nlocal && std::isnan(q[i]) != std::isnan(qin[i])) ++n;
+  return n;
 }
 
 /* ----------------------------------------------------------------------
@@ -876,10 +957,10 @@ void PairEQElastic::site_field(double **f)
    from scratch (which is kept)
 ------------------------------------------------------------------------- */
 
-void PairEQElastic::drift_check(EQCoordinateSource *src)
+void PairEQElastic::drift_check(EQCoordinateSource *src, const EQChangeSet *set)
 {
   const int nlocal = atom->nlocal;
-  follow(src, false);    // the incremental field at the current positions
+  update(src, set, false);    // the incremental field at the current positions
   if (pending) site_field(nullptr);
   std::vector<double> hold(h, h + nlocal);
   recompute(src);
@@ -936,10 +1017,7 @@ void PairEQElastic::scatter(const EQChangeSet &set)
         ghost_share(j, -kv[p] * dq);
     }
     if (vir_current) vir_pending.emplace_back(i, dq);
-    if (!cmark[i]) {
-      cmark[i] = 1;
-      csync.push_back(i);
-    }
+    sync_mark(i);
   }
   hchanged.resize(nc);
   comm_mode = COMM_SHARES;
@@ -972,6 +1050,103 @@ void PairEQElastic::virial_pending()
 }
 
 /* ----------------------------------------------------------------------
+   a set of members of the source (contacts that leave the field while
+   they wait to re-form, or detach for good, and contacts that re-form):
+   their partners' fields change by their share only.  A leaver i takes
+   k_ij from K_j and k_ij (q_j - q_i) from h_j, at its last q_i; a joiner
+   gets h_i and K_i from its cached pairs and gives its partners the
+   same shares back.  A partner j changes by K_j += c, h_j += c q_j - m
+   (c = -k_ij, m = -k_ij q_i for a leave; +k_ij, +k_ij q_i for a join),
+   so that a ghost's share needs no q_j on the rank that sends it.
+   Joiners get no share from each other (each one's h is from scratch,
+   with the others' new q, which reach their ghosts first).  Cost: that
+   of the partners, one forward and one reverse communication; the
+   moments and the virial are recomputed when next read.
+------------------------------------------------------------------------- */
+
+void PairEQElastic::change_members(EQCoordinateSource *src, const EQChangeSet &set)
+{
+  const double *qin = src->source_coordinates();
+  const int *const fr = first.data();
+  const int *const jv = pj.data();
+  const double *const kv = pk.data();
+  hchanged.clear();
+  gtouched.clear();
+  joined.clear();
+  for (int m = 0; m < set.n; m++) mark_member(set.list[m]);
+  for (int m = 0; m < set.n; m++) {    // leavers: at their q before
+    const int i = set.list[m];
+    const double qi = q[i];
+    if (std::isnan(qi) || !std::isnan(qin[i])) continue;
+    for (int p = fr[2 * i]; p < fr[2 * i + 1]; p++) {
+      const int j = jv[p];
+      if (!std::isnan(q[j])) member_share(j, -kv[p], -kv[p] * qi);
+    }
+    q[i] = NOT_COUPLED;
+    sync_mark(i);
+  }
+  for (int m = 0; m < set.n; m++) {    // joiners' q, to their ghosts with the leavers'
+    const int i = set.list[m];
+    if (!std::isnan(q[i]) || std::isnan(qin[i])) continue;
+    q[i] = qin[i];
+    sync_mark(i);
+    joined.push_back(i);
+  }
+  smark_ghosts = true;    // the ghosts that join are flagged as they arrive
+  sync_changed();
+  smark_ghosts = false;
+  for (const int i : joined) {
+    const double qi = q[i];
+    double hi = 0.0, ki = 0.0;
+    for (int p = fr[2 * i]; p < fr[2 * i + 1]; p++) {
+      const int j = jv[p];
+      if (std::isnan(q[j])) continue;
+      const double k = kv[p];
+      hi += k * (qi - q[j]);
+      ki += k;
+      if (!smark[j]) member_share(j, k, k * qi);
+    }
+    h[i] = hi;
+    ksum[i] = ki;
+    hchanged.push_back(i);
+  }
+  comm_mode = COMM_MEMBERS;
+  EQCompat::reverse_comm(comm, this);
+  for (const int j : gtouched) {
+    dh[j] = dk[j] = 0.0;
+    tmark[j] = 0;
+  }
+  for (const int i : smarked) smark[i] = 0;
+  smarked.clear();
+  ++nfield;
+  changed_at = nfield;
+  mom_valid = false;
+  vir_at = -1;
+  vir_pending.clear();
+  n_members += set.n;
+}
+
+// one partner's share of a change of members: K_j += kj, h_j += kj q_j - m
+// (a local atom that is coupled), or summed for its owner (a ghost)
+void PairEQElastic::member_share(int j, double kj, double m)
+{
+  if (j < atom->nlocal) {
+    if (std::isnan(q[j])) return;
+    ksum[j] += kj;
+    h[j] += kj * q[j] - m;
+    hchanged.push_back(j);
+    return;
+  }
+  if (!tmark[j]) {
+    tmark[j] = 1;
+    gtouched.push_back(j);
+    gsorted = false;
+  }
+  dk[j] += kj;
+  dh[j] += m;
+}
+
+/* ----------------------------------------------------------------------
    what the sources read: h and K at the current positions
 ------------------------------------------------------------------------- */
 
@@ -997,8 +1172,8 @@ void PairEQElastic::field_report()
 {
   double local[2] = {drift_max, hscale_max}, all[2];
   MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
-  bigint counts[2] = {n_change, n_nonuniform}, sums[2];
-  MPI_Allreduce(counts, sums, 2, MPI_LMP_BIGINT, MPI_SUM, world);
+  bigint counts[3] = {n_change, n_nonuniform, n_members}, sums[3];
+  MPI_Allreduce(counts, sums, 3, MPI_LMP_BIGINT, MPI_SUM, world);
   if (comm->me == 0 && n_update > 0) {
     std::string drift = n_check > 0
         ? fmt::format("{} drift checks: max |h_incremental - h_full| = {:.3g} (scale of h: "
@@ -1008,18 +1183,23 @@ void PairEQElastic::field_report()
                            : std::string("no drift check (check 0)"));
     utils::logmesg(lmp, "pair eq/elastic: {} field updates on rank 0: {} rigid translations (no "
                         "pair work), {} recomputed after list builds, {} non-uniform, {} followed the "
-                        "blocks' positions{}; {} coordinate changes scattered on all ranks; {}\n",
+                        "blocks' positions{}; {} coordinate changes scattered on all ranks{}; {}\n",
                    n_update, n_uniform, n_rebuild, n_nonuniform, n_advance,
-                   n_joined > 0 ? fmt::format(", {} recomputed as contacts re-formed after their "
-                                              "delay", n_joined)
+                   n_joined > 0 ? fmt::format(", {} recomputed for a new set of coupled atoms",
+                                              n_joined)
                                 : std::string(),
-                   sums[0], drift);
+                   sums[0],
+                   sums[2] > 0 ? fmt::format("; {} contacts joined or left the field, followed "
+                                             "by their partners", sums[2])
+                               : std::string(),
+                   drift);
     if (n_check > 0 && all[0] > 1e-9 * all[1])
       error->warning(FLERR, "Pair eq/elastic: the incremental field drifted by {:.3g} from the "
                             "recomputed one (scale of h {:.3g}); lower the check interval "
                             "(pair_style eq/elastic rcut check N)", all[0], all[1]);
   }
   n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = n_joined = 0;
+  n_members = 0;
   drift_max = hscale_max = 0.0;
 }
 
@@ -1063,6 +1243,7 @@ void PairEQElastic::compute(int eflag, int vflag)
       if (std::isnan(qi)) continue;
       for (int m = first[2 * i]; m < first[2 * i + 1]; m++) {
         const int j = pj[m];
+        if (std::isnan(q[j])) continue;
         const double k = pk[m], dq = qi - q[j];
         double del[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
         if (site_distance) del[d] -= dq;
@@ -1186,12 +1367,11 @@ void PairEQElastic::unpack_forward_comm(int n, int first_, double *buf)
   const int c = static_cast<int>(buf[0]);
   for (int k = 0; k < c; k++) {
     const int g = first_ + static_cast<int>(buf[1 + 2 * k]);
-    q[g] = buf[2 + 2 * k];
-    w[g] = x[g][idir] - q[g];
-    if (!cmark[g]) {    // a ghost that passes it on in a later swap
-      cmark[g] = 1;
-      csync.push_back(g);
-    }
+    const double qg = buf[2 + 2 * k];
+    if (smark_ghosts && std::isnan(q[g]) && !std::isnan(qg)) mark_member(g);    // it joins
+    q[g] = qg;
+    w[g] = x[g][idir] - qg;
+    sync_mark(g);    // a ghost that passes it on in a later swap
   }
 }
 
@@ -1203,15 +1383,21 @@ int PairEQElastic::pack_reverse_comm(int n, int first_, double *buf)
     std::sort(gtouched.begin(), gtouched.end());
     gsorted = true;
   }
+  const int width = comm_mode == COMM_MEMBERS ? 3 : 2;
   int c = 0;
   for (auto it = std::lower_bound(gtouched.begin(), gtouched.end(), first_);
        it != gtouched.end() && *it < first_ + n; ++it) {
-    buf[1 + 2 * c] = *it - first_;
-    buf[2 + 2 * c] = dh[*it];
+    double *b = buf + 1 + width * c;
+    b[0] = *it - first_;
+    if (width == 3) {
+      b[1] = dk[*it];
+      b[2] = dh[*it];
+    } else
+      b[1] = dh[*it];
     ++c;
   }
   buf[0] = c;
-  return 1 + 2 * c;
+  return 1 + width * c;
 }
 
 // shares into their owners (or into ghosts that pass them on in a later
@@ -1221,6 +1407,13 @@ void PairEQElastic::unpack_reverse_comm(int n, int *list_, double *buf)
   if (n == 0) return;
   const int nlocal = atom->nlocal;
   const int c = static_cast<int>(buf[0]);
+  if (comm_mode == COMM_MEMBERS) {
+    for (int k = 0; k < c; k++) {
+      const double *b = buf + 1 + 3 * k;
+      member_share(list_[static_cast<int>(b[0])], b[1], b[2]);
+    }
+    return;
+  }
   for (int k = 0; k < c; k++) {
     const int j = list_[static_cast<int>(buf[1 + 2 * k])];
     if (j < nlocal) {
@@ -1333,7 +1526,7 @@ void PairEQElastic::read_restart(FILE *fp)
 double PairEQElastic::memory_usage()
 {
   double bytes = Pair::memory_usage();
-  bytes += 9.0 * nmax * sizeof(double);
+  bytes += 10.0 * nmax * sizeof(double);
   bytes += static_cast<double>(pj.capacity()) * sizeof(int) + pk.capacity() * sizeof(double);
   bytes += static_cast<double>(first.capacity()) * sizeof(int);
   return bytes;

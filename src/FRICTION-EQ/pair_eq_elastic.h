@@ -103,9 +103,10 @@ class PairEQElastic : public Pair, public EQElasticField {
   // motion of the atoms; for contacts read of ghosts only, so that a
   // change set updates it for blocks only); h, ksum, mom (local) the
   // field, K_i, and the first moments M_i,a = sum_j k_ij del_ij,a of the
-  // virial; dh the ghosts' shares of a change set
+  // virial; dh the ghosts' shares of a change set, dk those of K (a
+  // change of members)
   int nmax;
-  double *q, *w, *h, *ksum, *dh;
+  double *q, *w, *h, *ksum, *dh, *dk;
   double (*xq)[3];
   double (*mom)[3];
   // the spread of the displacements since xq (rigid translation test)
@@ -145,9 +146,14 @@ class PairEQElastic : public Pair, public EQElasticField {
   };
 
   // coupled pairs of the current neighbor list: atom i's partners are
-  // pj[first[2i] .. first[2i+1]) with k_ij pk (special factor included)
+  // pj[first[2i] .. first[2i+1]) with k_ij pk (special factor included).
+  // Contacts: the pairs of every atom of the source's group (member_bit),
+  // coupled now or not (q NaN: a contact waiting to re-form), so that
+  // contacts can join and leave the field between list builds; the sums
+  // skip the uncoupled.  Blocks (member_bit 0): the coupled atoms only
   std::vector<int> first, pj;
   std::vector<double> pk;
+  int member_bit;
   // the coupled ghosts in the lists of local coupled atoms (the only ghosts
   // whose q is kept current between list builds; the others: x - w)
   std::vector<int> glist;
@@ -173,13 +179,14 @@ class PairEQElastic : public Pair, public EQElasticField {
   int pending;          // blocks: h to be computed from q = x - w (with the forces)
   bigint nfield;        // changes of h so far
   bigint vir_at;        // nfield when wvir was computed (-1: never)
+  bool mom_valid;       // mom holds for the coupled set (false after a change of members)
   double wvir[3];       // sum over local i of (1/2) sum_j del_ij,a f_ij (f along dir)
   // changes (i, dq_i) scattered since, not yet in wvir (part of it while
   // vir_at == nfield; cleared when wvir is computed)
   std::vector<std::pair<int, double>> vir_pending;
   // what the next forward/reverse communication carries: q of all
   // ghosts, q of the changed atoms, or the scattered shares of dh
-  enum CommMode { COMM_ALL, COMM_CHANGED, COMM_SHARES };
+  enum CommMode { COMM_ALL, COMM_CHANGED, COMM_SHARES, COMM_MEMBERS };
   CommMode comm_mode;
   // a change set's scatter: the ghosts it gave a share of dh (flagged in
   // tmark; dh and tmark are zero outside a scatter), in index order for
@@ -194,10 +201,16 @@ class PairEQElastic : public Pair, public EQElasticField {
   // (local: scattered; ghost: received), flagged in cmark (zero outside)
   std::vector<int> csync;
   std::vector<char> cmark;
+  // a change of members: its local atoms, and the ghosts that joined in
+  // it (received), flagged in smark (zero outside); smarked lists them
+  std::vector<int> smarked, joined;
+  std::vector<char> smark;
+  bool smark_ghosts;    // unpack_forward_comm() flags the ghosts that join
 
   // what the updates cost and how far the incremental field drifted
   bigint n_update, n_uniform, n_rebuild, n_nonuniform, n_advance, n_change, n_check;
-  bigint n_joined;    // recomputed at a new evaluation for a new set of coupled atoms
+  bigint n_joined;    // recomputed for a new set of coupled atoms (not followed incrementally)
+  bigint n_members;   // atoms that joined or left the field, followed incrementally
   double drift_max, hscale_max;
 
   void allocate();
@@ -207,7 +220,23 @@ class PairEQElastic : public Pair, public EQElasticField {
   void refresh();
   void recompute(EQCoordinateSource *src);
   void follow(EQCoordinateSource *src, bool count = true);
+  void update(EQCoordinateSource *src, const EQChangeSet *set, bool count);
+  int expected_changes(const double *qin) const;
   void scatter(const EQChangeSet &set);
+  void change_members(EQCoordinateSource *src, const EQChangeSet &set);
+  void sync_mark(int i)    // q[i] changed: sent to its ghosts by sync_changed()
+  {
+    if (cmark[i]) return;
+    cmark[i] = 1;
+    csync.push_back(i);
+  }
+  void mark_member(int i)
+  {
+    if (smark[i]) return;
+    smark[i] = 1;
+    smarked.push_back(i);
+  }
+  void member_share(int j, double kj, double m);
   void sync_changed();
   void ghost_share(int j, double v)
   {
@@ -222,8 +251,9 @@ class PairEQElastic : public Pair, public EQElasticField {
   void sync_ghosts();
   void rebuild(bool fresh_ghosts);
   void site_field(double **f);
-  void drift_check(EQCoordinateSource *src);
+  void drift_check(EQCoordinateSource *src, const EQChangeSet *set);
   void virial_now();
+  template <bool MOMENTS> void virial_pairs();
   void virial_pending();
   void skin_error(int i, int j, double du);
   void overlap_error(int i, int j);

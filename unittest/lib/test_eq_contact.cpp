@@ -109,9 +109,11 @@ class DenseField : public AvalancheHooks {
     }
     return view(name_changed);
   }
-  AvalancheField detached() override
+  AvalancheField detached(const int *list, int n, bool exact) override
   {
     ++ndetached;
+    last_exact = exact;
+    left.assign(list, list + n);
     recompute();
     return view(false);
   }
@@ -122,7 +124,7 @@ class DenseField : public AvalancheHooks {
   std::vector<double> h, K;
   bool name_changed;
   bool thermal_rows = false;
-  std::vector<int> names;
+  std::vector<int> names, left;
   int nchanged = 0, ndetached = 0;
   bool last_exact = true;
   long nbroken = 0;
@@ -1319,6 +1321,8 @@ TEST(Avalanche, WaitingContactsLeaveTheField)
   const AvalancheResult res = avalanche(m, ra.data(), members.data(), n, 0.0, f, list, ds);
   EXPECT_EQ(res.size, 1);
   EXPECT_EQ(f.ndetached, 1);
+  EXPECT_EQ(f.left, std::vector<int>{0});    // the leaver named
+  EXPECT_TRUE(f.last_exact);
   EXPECT_EQ(f.nchanged, 0);
   EXPECT_TRUE(m.waiting(a[0].data()));
   EXPECT_EQ(a[0][CT_WAIT], 5.0);

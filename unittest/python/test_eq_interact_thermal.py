@@ -588,3 +588,48 @@ def test_the_delay_comparison_can_fail(delay_runs):
         print(f"can fail: delay {law} runs against the {other} Monte Carlo, breaks: z {z:.1f}")
         assert abs(z) > Z_MAX, (law, z)
         assert x["steady"].mean() < 0.40
+
+
+REPORT = (r"pair eq/elastic: .*?(?:, (\d+) recomputed for a new set of coupled atoms)?; \d+ "
+          r"coordinate changes scattered on all ranks(?:; (\d+) contacts joined or left the "
+          r"field, followed by their partners)?; (\d+) drift checks: max \|h_incremental - "
+          r"h_full\| = (\S+) \(scale of h: (\S+)\)")
+
+
+@pytest.mark.parametrize("nprocs", [1, 2])
+@pytest.mark.parametrize("reform", ["delta 0.0", "none"])
+def test_contacts_join_and_leave_the_field_by_their_partners(tmp_path, nprocs, reform):
+    """With a delay (or reform none) a broken contact leaves the field and
+    joins it again: pair eq/elastic follows each join and leave by the
+    partners' share (no recompute of the field).  Reference: the same run
+    with `check 1`, where every update of the field is compared with one
+    computed from scratch over all pairs, which replaces it: the drift
+    stays at rounding (1e-12 of the scale of h), no update was a
+    recompute for a new set of coupled atoms, and the thermo output (F,
+    breaks, rounds) of the run without the check equals it (F to 1e-12,
+    the breaks exactly), on 1 and 2 ranks.  X up to 2: some 2000 joins
+    and leaves with delay exp 10 (with reform none each contact leaves
+    once: 480)."""
+    import re
+    base = INPUT.read_text().replace("reform delta 0.0", "reform " + reform)
+    outs = {}
+    for check in ("", " check 1"):
+        d = tmp_path / ("check" if check else "plain")
+        d.mkdir()
+        f = d / "in.members"
+        f.write_text(base.replace("pair_style eq/elastic 3.0", "pair_style eq/elastic 3.0" + check))
+        log = eqtools.run_lammps(f, dict(out=d, extra="thermal 0.05 1.0 1.0 delay exp 10.0",
+                                         Xmax=2.0), nprocs=nprocs, cwd=d)
+        m = re.search(REPORT, log)
+        assert m, log[-2000:]
+        outs[check] = (thermo(log), m)
+    (plain, mp), (checked, mc) = outs[""], outs[" check 1"]
+    recomputed, moved, nchecks, drift, scale = mc.groups()
+    print(f"reform {reform}, {nprocs} ranks: {moved} joins and leaves, {nchecks} drift checks, "
+          f"max drift {drift} (scale {scale}); without the check: {mp.group(2)}")
+    assert recomputed is None and mp.group(1) is None
+    assert int(moved) > (400 if reform == "none" else 1000) and mp.group(2) == moved
+    assert int(nchecks) > 900 and float(drift) <= 1e-12 * float(scale)
+    assert plain.shape == checked.shape and len(plain) == 41
+    assert np.array_equal(plain[:, 3], checked[:, 3]) and np.array_equal(plain[:, 4], checked[:, 4])
+    assert np.abs(plain[:, 2] - checked[:, 2]).max() < 1e-12

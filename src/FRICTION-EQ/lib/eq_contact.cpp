@@ -666,7 +666,8 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
     if (res.rounds == 1) res.trigger = all;
     res.size += all;
     res.local += static_cast<long>(list.size());
-    if (!model.reforms() || model.leaves_field()) f = hooks.detached();
+    if (!model.reforms() || model.leaves_field())
+      f = hooks.detached(list.data(), static_cast<int>(list.size()), sums[1] == 0);
     else f = hooks.changed(list.data(), static_cast<int>(list.size()), ds.data(), sums[1] == 0);
   }
   return res;

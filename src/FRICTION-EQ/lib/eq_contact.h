@@ -425,9 +425,12 @@ class AvalancheHooks {
   // an incremental update follows it to rounding (false: recompute; the
   // same verdict on all ranks)
   virtual AvalancheField changed(const int *list, int n, const double *ds, bool exact) = 0;
-  // contacts detached for good, or broken and waiting to re-form
-  // (ContactModel::leaves_field()): the field recomputed without them
-  virtual AvalancheField detached() = 0;
+  // contacts list[0..n) detached for good, or broke and wait to re-form
+  // (ContactModel::leaves_field()): the field without them, at fixed
+  // positions.  exact: on every rank every stretch they left with is at
+  // most AVALANCHE_CHANGE_MAX, so that the partners' fields can follow
+  // their leaving incrementally (false: recompute; the same on all ranks)
+  virtual AvalancheField detached(const int *list, int n, bool exact) = 0;
   virtual uint64_t tag(int i) const = 0;
 };
 
