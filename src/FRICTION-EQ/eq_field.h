@@ -101,9 +101,10 @@ class EQCoordinateSource {
   virtual const double *source_coordinates() = 0;
   // the change from version `since` to the current one, if it is one
   // change set at fixed positions; false: recompute from the coordinates.
-  // A set of members may also come with a new evaluation: the atoms not
-  // in it moved with the positions, those in it joined or left the field
-  // there
+  // In a set of members every atom joins or leaves (a member whose
+  // coordinate changes otherwise makes the set not exact); a set of
+  // joiners only may also come with a new evaluation: the other atoms
+  // moved with the positions, those in it joined there
   virtual bool source_changes(bigint since, EQChangeSet &set) const = 0;
 };
 

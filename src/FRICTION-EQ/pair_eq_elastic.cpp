@@ -140,7 +140,7 @@ PairEQElastic::PairEQElastic(LAMMPS *lmp) :
   wvir[0] = wvir[1] = wvir[2] = 0.0;
   n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = n_joined = 0;
   n_members = 0;
-  drift_max = hscale_max = 0.0;
+  drift_max = hscale_max = kdrift_max = kscale_max = 0.0;
 }
 
 PairEQElastic::~PairEQElastic()
@@ -580,7 +580,7 @@ void PairEQElastic::refresh()
       if (!one_set || set.members) ++n_joined;
       recompute(src);
     } else if (set.members)
-      change_members(src, set);
+      change_members(src, set, false);
     else
       scatter(set);
   }
@@ -596,7 +596,7 @@ void PairEQElastic::update(EQCoordinateSource *src, const EQChangeSet *set, bool
   }
   for (int m = 0; m < set->n; m++) mark_member(set->list[m]);
   follow(src, count);    // the members of the set as they were
-  change_members(src, *set);
+  change_members(src, *set, true);
 }
 
 // everything from the source's coordinates (ghosts from their owners)
@@ -873,7 +873,12 @@ void PairEQElastic::follow(EQCoordinateSource *src, bool count)
     q[i] = qi;
   }
   // the changes of a set of members are expected (all of them, none else)
-  if (nchanged > 0 && nchanged == expected_changes(qin)) changed = -1;
+  if (nchanged > 0 && !smarked.empty()) {
+    if (nchanged == expected_changes(qin)) changed = -1;
+    else
+      for (int i = 0; i < nlocal; i++)    // name one that was not expected
+        if (!smark[i] && std::isnan(q[i]) != std::isnan(qin[i])) changed = i;
+  }
   if (changed >= 0 && !std::isfinite(x[changed][d]))    // a NaN stretch looks uncoupled
     error->one(FLERR, "Pair eq/elastic: position of atom {} of {} is {} (numerical instability: "
                       "check the timestep, the forces and the integrator)",
@@ -962,15 +967,18 @@ void PairEQElastic::drift_check(EQCoordinateSource *src, const EQChangeSet *set)
   const int nlocal = atom->nlocal;
   update(src, set, false);    // the incremental field at the current positions
   if (pending) site_field(nullptr);
-  std::vector<double> hold(h, h + nlocal);
+  std::vector<double> hold(h, h + nlocal), kold(ksum, ksum + nlocal);
   recompute(src);
   ++n_check;
   // the scale of h: |h| and the size of its terms, K |q| (rigidly moving
-  // atoms have h ~ 0 but terms of K |q| each)
+  // atoms have h ~ 0 but terms of K |q| each); K (changed incrementally
+  // by changes of members) against its own size
   for (int i = 0; i < nlocal; i++) {
     if (std::isnan(q[i])) continue;
     drift_max = std::fmax(drift_max, std::fabs(hold[i] - h[i]));
     hscale_max = std::fmax(hscale_max, std::fmax(std::fabs(h[i]), ksum[i] * std::fabs(q[i])));
+    kdrift_max = std::fmax(kdrift_max, std::fabs(kold[i] - ksum[i]));
+    kscale_max = std::fmax(kscale_max, std::fabs(ksum[i]));
   }
 }
 
@@ -1064,7 +1072,7 @@ void PairEQElastic::virial_pending()
    moments and the virial are recomputed when next read.
 ------------------------------------------------------------------------- */
 
-void PairEQElastic::change_members(EQCoordinateSource *src, const EQChangeSet &set)
+void PairEQElastic::change_members(EQCoordinateSource *src, const EQChangeSet &set, bool moved)
 {
   const double *qin = src->source_coordinates();
   const int *const fr = first.data();
@@ -1077,7 +1085,11 @@ void PairEQElastic::change_members(EQCoordinateSource *src, const EQChangeSet &s
   for (int m = 0; m < set.n; m++) {    // leavers: at their q before
     const int i = set.list[m];
     const double qi = q[i];
-    if (std::isnan(qi) || !std::isnan(qin[i])) continue;
+    if (std::isnan(qi)) continue;
+    // (the source's contract, eq_field.h: a member of a set joins or
+    // leaves, and leaves only at fixed positions, where q_i is current)
+    if (!std::isnan(qin[i])) member_error(i, "stayed in the field");
+    if (moved) member_error(i, "left the field with a new evaluation");
     for (int p = fr[2 * i]; p < fr[2 * i + 1]; p++) {
       const int j = jv[p];
       if (!std::isnan(q[j])) member_share(j, -kv[p], -kv[p] * qi);
@@ -1126,6 +1138,13 @@ void PairEQElastic::change_members(EQCoordinateSource *src, const EQChangeSet &s
   n_members += set.n;
 }
 
+// a set of members that breaks the source's contract (eq_field.h)
+void PairEQElastic::member_error(int i, const char *what)
+{
+  error->one(FLERR, "Pair eq/elastic: atom {} of {} {} in a change of members (internal error: "
+                    "the field cannot follow it)", atom->tag[i], source_label, what);
+}
+
 // one partner's share of a change of members: K_j += kj, h_j += kj q_j - m
 // (a local atom that is coupled), or summed for its owner (a ghost)
 void PairEQElastic::member_share(int j, double kj, double m)
@@ -1170,15 +1189,15 @@ EQFieldView PairEQElastic::field_view()
 
 void PairEQElastic::field_report()
 {
-  double local[2] = {drift_max, hscale_max}, all[2];
-  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_MAX, world);
+  double local[4] = {drift_max, hscale_max, kdrift_max, kscale_max}, all[4];
+  MPI_Allreduce(local, all, 4, MPI_DOUBLE, MPI_MAX, world);
   bigint counts[3] = {n_change, n_nonuniform, n_members}, sums[3];
   MPI_Allreduce(counts, sums, 3, MPI_LMP_BIGINT, MPI_SUM, world);
   if (comm->me == 0 && n_update > 0) {
     std::string drift = n_check > 0
         ? fmt::format("{} drift checks: max |h_incremental - h_full| = {:.3g} (scale of h: "
-                      "{:.3g})",
-                      n_check, all[0], all[1])
+                      "{:.3g}), max |K_incremental - K_full| = {:.3g} (scale of K: {:.3g})",
+                      n_check, all[0], all[1], all[2], all[3])
         : (check_every > 0 ? fmt::format("no drift check (one every {} updates)", check_every)
                            : std::string("no drift check (check 0)"));
     utils::logmesg(lmp, "pair eq/elastic: {} field updates on rank 0: {} rigid translations (no "
@@ -1193,14 +1212,15 @@ void PairEQElastic::field_report()
                                              "by their partners", sums[2])
                                : std::string(),
                    drift);
-    if (n_check > 0 && all[0] > 1e-9 * all[1])
+    if (n_check > 0 && (all[0] > 1e-9 * all[1] || all[2] > 1e-9 * all[3]))
       error->warning(FLERR, "Pair eq/elastic: the incremental field drifted by {:.3g} from the "
-                            "recomputed one (scale of h {:.3g}); lower the check interval "
-                            "(pair_style eq/elastic rcut check N)", all[0], all[1]);
+                            "recomputed one (scale of h {:.3g}), its K by {:.3g} (scale {:.3g}); "
+                            "lower the check interval (pair_style eq/elastic rcut check N)",
+                     all[0], all[1], all[2], all[3]);
   }
   n_update = n_uniform = n_rebuild = n_nonuniform = n_advance = n_change = n_check = n_joined = 0;
   n_members = 0;
-  drift_max = hscale_max = 0.0;
+  drift_max = hscale_max = kdrift_max = kscale_max = 0.0;
 }
 
 /* ----------------------------------------------------------------------

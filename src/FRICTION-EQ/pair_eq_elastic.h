@@ -211,7 +211,7 @@ class PairEQElastic : public Pair, public EQElasticField {
   bigint n_update, n_uniform, n_rebuild, n_nonuniform, n_advance, n_change, n_check;
   bigint n_joined;    // recomputed for a new set of coupled atoms (not followed incrementally)
   bigint n_members;   // atoms that joined or left the field, followed incrementally
-  double drift_max, hscale_max;
+  double drift_max, hscale_max, kdrift_max, kscale_max;
 
   void allocate();
   void grow();
@@ -223,7 +223,8 @@ class PairEQElastic : public Pair, public EQElasticField {
   void update(EQCoordinateSource *src, const EQChangeSet *set, bool count);
   int expected_changes(const double *qin) const;
   void scatter(const EQChangeSet &set);
-  void change_members(EQCoordinateSource *src, const EQChangeSet &set);
+  void change_members(EQCoordinateSource *src, const EQChangeSet &set, bool moved);
+  void member_error(int i, const char *what);
   void sync_mark(int i)    // q[i] changed: sent to its ghosts by sync_changed()
   {
     if (cmark[i]) return;

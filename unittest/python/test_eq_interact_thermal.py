@@ -593,7 +593,8 @@ def test_the_delay_comparison_can_fail(delay_runs):
 REPORT = (r"pair eq/elastic: .*?(?:, (\d+) recomputed for a new set of coupled atoms)?; \d+ "
           r"coordinate changes scattered on all ranks(?:; (\d+) contacts joined or left the "
           r"field, followed by their partners)?; (\d+) drift checks: max \|h_incremental - "
-          r"h_full\| = (\S+) \(scale of h: (\S+)\)")
+          r"h_full\| = (\S+) \(scale of h: (\S+)\), max \|K_incremental - K_full\| = (\S+) "
+          r"\(scale of K: (\S+)\)")
 
 
 @pytest.mark.parametrize("nprocs", [1, 2])
@@ -604,7 +605,7 @@ def test_contacts_join_and_leave_the_field_by_their_partners(tmp_path, nprocs, r
     partners' share (no recompute of the field).  Reference: the same run
     with `check 1`, where every update of the field is compared with one
     computed from scratch over all pairs, which replaces it: the drift
-    stays at rounding (1e-12 of the scale of h), no update was a
+    of h and of K stays at rounding (1e-12 of their scales), no update was a
     recompute for a new set of coupled atoms, and the thermo output (F,
     breaks, rounds) of the run without the check equals it (F to 1e-12,
     the breaks exactly), on 1 and 2 ranks.  X up to 2: some 2000 joins
@@ -624,12 +625,14 @@ def test_contacts_join_and_leave_the_field_by_their_partners(tmp_path, nprocs, r
         assert m, log[-2000:]
         outs[check] = (thermo(log), m)
     (plain, mp), (checked, mc) = outs[""], outs[" check 1"]
-    recomputed, moved, nchecks, drift, scale = mc.groups()
+    recomputed, moved, nchecks, drift, scale, kdrift, kscale = mc.groups()
     print(f"reform {reform}, {nprocs} ranks: {moved} joins and leaves, {nchecks} drift checks, "
-          f"max drift {drift} (scale {scale}); without the check: {mp.group(2)}")
+          f"max drift {drift} (scale {scale}), of K {kdrift} (scale {kscale}); without the "
+          f"check: {mp.group(2)}")
     assert recomputed is None and mp.group(1) is None
     assert int(moved) > (400 if reform == "none" else 1000) and mp.group(2) == moved
     assert int(nchecks) > 900 and float(drift) <= 1e-12 * float(scale)
+    assert float(kdrift) <= 1e-12 * float(kscale)
     assert plain.shape == checked.shape and len(plain) == 41
     assert np.array_equal(plain[:, 3], checked[:, 3]) and np.array_equal(plain[:, 4], checked[:, 4])
     assert np.abs(plain[:, 2] - checked[:, 2]).max() < 1e-12

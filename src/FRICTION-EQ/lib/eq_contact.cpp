@@ -640,6 +640,10 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
     // counts over all ranks, in one reduction
     const int top = list.empty() ? -1 : *std::max_element(list.begin(), list.end());
     if (static_cast<int>(ds.size()) <= top) ds.resize(top + 1);
+    // (with a model whose breaks leave the field, a contact that does not
+    // leave, re-formed at once after a wait that rounded to 0, is a
+    // change the field cannot follow as a leave: counted with those)
+    const bool leave = !model.reforms() || model.leaves_field();
     long sums[2] = {static_cast<long>(list.size()), 0};
     for (const int i : list) {
       double *st = rows[i];
@@ -650,6 +654,7 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
       ds[i] = model.break_once(st, hooks.tag(i), e, h, f.k[i], th ? hot[i] : NAN,
                                th ? thermal_age[i] : 0.0) - s_old;
       if (!change_followable(ds[i], st[CS_STRETCH])) ++sums[1];
+      if (leave && st[CS_THRESHOLD] > 0.0 && !model.waiting(st)) ++sums[1];
     }
     hooks.global_sum(sums, 2);
     const long all = sums[0];
@@ -666,8 +671,7 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
     if (res.rounds == 1) res.trigger = all;
     res.size += all;
     res.local += static_cast<long>(list.size());
-    if (!model.reforms() || model.leaves_field())
-      f = hooks.detached(list.data(), static_cast<int>(list.size()), sums[1] == 0);
+    if (leave) f = hooks.detached(list.data(), static_cast<int>(list.size()), sums[1] == 0);
     else f = hooks.changed(list.data(), static_cast<int>(list.size()), ds.data(), sums[1] == 0);
   }
   return res;
