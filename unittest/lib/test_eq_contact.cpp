@@ -1295,6 +1295,46 @@ TEST(Thinning, DelayedBreakOnceAndRejoinAreAdvance)
   }
 }
 
+// a break that does not leave the field although the model's breaks do
+// (a wait that rounds to 0: the contact re-forms at once) is named as a
+// change the field cannot follow as a leave (exact false: recompute);
+// one that leaves is followable.  tau = the smallest denormal: tau Exp(1)
+// rounds to 0 for draws below 1/2, to tau above
+TEST(Avalanche, BreakThatDoesNotLeaveIsNotFollowable)
+{
+  ThermalSpec t;
+  t.delay = DelayKind::EXPONENTIAL;
+  t.tau = std::numeric_limits<double>::denorm_min();
+  int left = 0, stayed = 0;
+  for (uint64_t seed = 1; seed <= 40; ++seed) {
+    const ContactModel m(1.0, seed, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"),
+                         spec(make_delta(0.0), "delta 0"), DistributionSpec{}, true, true, false,
+                         t);
+    ASSERT_TRUE(m.leaves_field());
+    const int n = 3;
+    std::vector<std::vector<double>> a(n);
+    std::vector<double *> ra;
+    for (int i = 0; i < n; ++i) {
+      a[i].assign(m.columns(), 0.0);
+      m.form(a[i].data(), 100 + i, 0.0);
+      a[i][CS_STRETCH] = i == 0 ? 2.0 : 0.1;
+      ra.push_back(a[i].data());
+    }
+    DenseField f(chain_matrix(n, 0.01), ra);
+    f.thermal_rows = true;
+    f.recompute();
+    std::vector<int> members{0, 1, 2}, list;
+    std::vector<double> ds;
+    avalanche(m, ra.data(), members.data(), n, 0.0, f, list, ds);
+    ASSERT_GE(f.ndetached, 1);
+    const bool waits = m.waiting(a[0].data());
+    EXPECT_EQ(f.last_exact, waits) << "seed " << seed;
+    (waits ? left : stayed) += 1;
+  }
+  EXPECT_GT(left, 0);
+  EXPECT_GT(stayed, 0);
+}
+
 // with delays every break leaves the field: the avalanche recomputes it
 // without the waiting contact (detached()), which no round tests again
 TEST(Avalanche, WaitingContactsLeaveTheField)
