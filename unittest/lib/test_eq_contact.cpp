@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -1295,6 +1296,41 @@ TEST(Thinning, DelayedBreakOnceAndRejoinAreAdvance)
   }
 }
 
+// a model with formation delays (uniform thresholds, re-forming at 0),
+// and three of its contacts in a chain (k_ij = 0.01), the first over its
+// threshold: their rows and field after one avalanche
+namespace {
+ContactModel delay_model(DelayKind kind, double tau, uint64_t seed)
+{
+  ThermalSpec t;
+  t.delay = kind;
+  t.tau = tau;
+  return ContactModel(1.0, seed, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"),
+                      spec(make_delta(0.0), "delta 0"), DistributionSpec{}, true, true, false, t);
+}
+struct DelayChain {
+  std::vector<std::vector<double>> a;
+  std::unique_ptr<DenseField> f;
+  AvalancheResult res;
+  explicit DelayChain(const ContactModel &m) : a(3)
+  {
+    std::vector<double *> ra;
+    for (int i = 0; i < 3; ++i) {
+      a[i].assign(m.columns(), 0.0);
+      m.form(a[i].data(), 100 + i, 0.0);
+      a[i][CS_STRETCH] = i == 0 ? 2.0 : 0.1;
+      ra.push_back(a[i].data());
+    }
+    f.reset(new DenseField(chain_matrix(3, 0.01), ra));
+    f->thermal_rows = true;
+    f->recompute();
+    std::vector<int> members{0, 1, 2}, list;
+    std::vector<double> ds;
+    res = avalanche(m, f->rows.data(), members.data(), 3, 0.0, *f, list, ds);
+  }
+};
+}    // namespace
+
 // a break that does not leave the field although the model's breaks do
 // (a wait that rounds to 0: the contact re-forms at once) is named as a
 // change the field cannot follow as a leave (exact false: recompute);
@@ -1302,33 +1338,15 @@ TEST(Thinning, DelayedBreakOnceAndRejoinAreAdvance)
 // rounds to 0 for draws below 1/2, to tau above
 TEST(Avalanche, BreakThatDoesNotLeaveIsNotFollowable)
 {
-  ThermalSpec t;
-  t.delay = DelayKind::EXPONENTIAL;
-  t.tau = std::numeric_limits<double>::denorm_min();
   int left = 0, stayed = 0;
   for (uint64_t seed = 1; seed <= 40; ++seed) {
-    const ContactModel m(1.0, seed, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"),
-                         spec(make_delta(0.0), "delta 0"), DistributionSpec{}, true, true, false,
-                         t);
+    const ContactModel m =
+        delay_model(DelayKind::EXPONENTIAL, std::numeric_limits<double>::denorm_min(), seed);
     ASSERT_TRUE(m.leaves_field());
-    const int n = 3;
-    std::vector<std::vector<double>> a(n);
-    std::vector<double *> ra;
-    for (int i = 0; i < n; ++i) {
-      a[i].assign(m.columns(), 0.0);
-      m.form(a[i].data(), 100 + i, 0.0);
-      a[i][CS_STRETCH] = i == 0 ? 2.0 : 0.1;
-      ra.push_back(a[i].data());
-    }
-    DenseField f(chain_matrix(n, 0.01), ra);
-    f.thermal_rows = true;
-    f.recompute();
-    std::vector<int> members{0, 1, 2}, list;
-    std::vector<double> ds;
-    avalanche(m, ra.data(), members.data(), n, 0.0, f, list, ds);
-    ASSERT_GE(f.ndetached, 1);
-    const bool waits = m.waiting(a[0].data());
-    EXPECT_EQ(f.last_exact, waits) << "seed " << seed;
+    const DelayChain c(m);
+    ASSERT_GE(c.f->ndetached, 1);
+    const bool waits = m.waiting(c.a[0].data());
+    EXPECT_EQ(c.f->last_exact, waits) << "seed " << seed;
     (waits ? left : stayed) += 1;
   }
   EXPECT_GT(left, 0);
@@ -1339,34 +1357,17 @@ TEST(Avalanche, BreakThatDoesNotLeaveIsNotFollowable)
 // without the waiting contact (detached()), which no round tests again
 TEST(Avalanche, WaitingContactsLeaveTheField)
 {
-  ThermalSpec t;
-  t.delay = DelayKind::FIXED;
-  t.tau = 5.0;
-  const ContactModel m(1.0, 4711, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"),
-                       spec(make_delta(0.0), "delta 0"), DistributionSpec{}, true, true, false, t);
-  const int n = 3;
-  std::vector<std::vector<double>> a(n);
-  std::vector<double *> ra;
-  for (int i = 0; i < n; ++i) {
-    a[i].assign(m.columns(), 0.0);
-    m.form(a[i].data(), 100 + i, 0.0);
-    a[i][CS_STRETCH] = i == 0 ? 2.0 : 0.1;
-    ra.push_back(a[i].data());
-  }
-  DenseField f(chain_matrix(n, 0.01), ra);
-  f.thermal_rows = true;
-  f.recompute();
-  std::vector<int> members{0, 1, 2}, list;
-  std::vector<double> ds;
-  const AvalancheResult res = avalanche(m, ra.data(), members.data(), n, 0.0, f, list, ds);
-  EXPECT_EQ(res.size, 1);
+  const ContactModel m = delay_model(DelayKind::FIXED, 5.0, 4711);
+  const DelayChain c(m);
+  const DenseField &f = *c.f;
+  EXPECT_EQ(c.res.size, 1);
   EXPECT_EQ(f.ndetached, 1);
   EXPECT_EQ(f.left, std::vector<int>{0});    // the leaver named
   EXPECT_TRUE(f.last_exact);
   EXPECT_EQ(f.nchanged, 0);
-  EXPECT_TRUE(m.waiting(a[0].data()));
-  EXPECT_EQ(a[0][CT_WAIT], 5.0);
-  EXPECT_EQ(a[0][CS_STRETCH], 0.0);
+  EXPECT_TRUE(m.waiting(c.a[0].data()));
+  EXPECT_EQ(c.a[0][CT_WAIT], 5.0);
+  EXPECT_EQ(c.a[0][CS_STRETCH], 0.0);
   EXPECT_EQ(f.K[0], 0.0);
   EXPECT_NEAR(f.K[1], 0.01, 1e-15);    // only contact 2 left as its partner
   EXPECT_NEAR(f.h[1], 0.0, 1e-15);
