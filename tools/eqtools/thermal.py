@@ -452,7 +452,11 @@ def survival(y, v, params=None, t_w=0.0, ng=2, ngl=4, h_max=2e-3, **kw):
 
 def steady_force(v, params=None, n=16, res=1, nthr=16, full=False, **kw):
     """Steady kinetic friction per contact F_k/(N k_c) at slider velocity v
-    (renewal quadrature, see the module docstring).  With full=True returns a
+    (renewal quadrature, see the module docstring).  n, res: the grid along
+    a life; nthr: threshold nodes per panel (16 are 1e-8 off where a life's
+    length has a kink in x_s0, x_r close to the thresholds, or varies
+    steeply with it, creep with barrier p > 0: use 128-256 there, see
+    test_threshold_nodes_of_the_reference).  With full=True returns a
     dict: F (F_k per contact), L (<L>, mean travel of a contact's life),
     L2 (<L^2>), gamma_s (breaks per contact per unit travel), n_a (attached
     fraction), rate (breaks per contact per unit time, v gamma_s)."""
