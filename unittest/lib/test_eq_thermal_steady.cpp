@@ -293,6 +293,47 @@ TEST(ThermalSteady, TwoQuadraturesAgree)
   }
 }
 
+// The hazard H(y; x_s0) of a life whose threshold is reached at its end
+// (x_s0 = r0 + y, u = 0 there), with the prefactor u^q, q = 1/4: the
+// kink every interpolant of survival() in x_s0 has at its first node.
+// Reference: H = (omega x_s0 / v) int_{u1}^{u0} u^q e^{-c u^(3/2)} du, c =
+// 1/theta (p = 0), by its series sum_k (-c)^k / k! u^(q+1+3k/2) /
+// (q+1+3k/2), exact to rounding here (c u0^(3/2) <= 0.02: the terms fall
+// by 50 each).  Before stop 41 H cost 12000 rates at such a point (u
+// lost its digits to cancellation near the end) and the transient of
+// these contacts did not end within minutes; it now takes seconds.
+TEST(ThermalSteady, PrefactorKinkAtTheEndOfALife)
+{
+  ThermalSlider s = uniform_slider(1e-3, 1e-8);
+  s.Pc = make_gaussian(1.0, 0.1, 0.0);
+  s.spec.q = 0.25;
+  const double r0 = 0.5;
+  const ContactLife life(s, r0, 0.0);
+  auto series = [](double U, double q, double c) {
+    double sum = 0.0, term = 1.0;    // (-c)^k / k!
+    for (int k = 0; k < 40; ++k) {
+      const double e = q + 1.0 + 1.5 * k;
+      sum += term * std::pow(U, e) / e;
+      term *= -c / (k + 1);
+    }
+    return sum;
+  };
+  for (double y : {1.6e-6, 1e-5, 2e-5, 4e-5}) {
+    for (double gap : {0.0, 1e-3 * y, 0.3 * y}) {
+      // u from the doubles themselves (x_s0 - r0 is exact here, 1 - r0/x_s0
+      // would be 3e-11 off)
+      const double xs0 = r0 + y + gap;
+      // (u1 may round below 0: the rate is 0 beyond the threshold)
+      const double u0 = (xs0 - r0) / xs0, u1 = std::max(0.0, ((xs0 - r0) - y) / xs0);
+      const double ref = xs0 / 1e-8 * (series(u0, 0.25, 1e3) - series(u1, 0.25, 1e3));
+      // beyond 2 H_CUT = 120 the quadrature stops early by design (e^-H
+      // is negligible): there only H > 120 is asserted
+      if (ref > 120.0) EXPECT_GT(life.exponent(y, xs0), 120.0) << "y " << y << " gap " << gap;
+      else EXPECT_NEAR(life.exponent(y, xs0), ref, 1e-12 * ref) << "y " << y << " gap " << gap;
+    }
+  }
+}
+
 // contacts re-forming at 0.8, close to the thresholds above it, with
 // aging and barrier p = 2: right after formation the barrier is small and
 // the threshold rises over the aging length v tau_a = 1e-8, so that most

@@ -285,13 +285,35 @@ std::vector<double> ContactLife::kinks() const
 }
 
 // H(y; x_s0): the rate grows toward y (u falls), the initial intervals
-// are graded toward it; stops once H is beyond H_CUT for sure
+// are graded toward it; stops once H is beyond H_CUT for sure.  With a
+// prefactor u^q (q > 0) the rate is not smooth where u reaches 0: at the
+// end y of the threshold x_s0 = s(y), a node of every interpolant in
+// x_s0 of survival().  There u = 1 - x/x_s0 near the end lost its digits
+// to cancellation (relative noise 1e-16/u), and with the prefactor's
+// kink the panels' errors did not fall below the tolerance: 400 panels
+// per H (gaussian thresholds re-forming at 0.5, theta = 1e-3, q = 0.25:
+// the transient did not end in minutes).  Without aging (x_s = x_s0)
+// and r0 >= 0, the rate is taken at u = (g + d)/x_s0, g = (x_s0 - r0) - y
+// the gap at the end and d = y - eta, in t with d = y t^4: no
+// cancellation, and the rate goes as t^(4q+3) near the end (smooth at q
+// = 1/4, C^3 for any q > 0)
 double ContactLife::exponent(double y, double xs0) const
 {
   if (!(model.params().theta > 0.0) || !(y > 0.0)) return 0.0;
+  auto tol = [](const Vec<1> &H) { return H[0] > 2.0 * H_CUT ? INF : TOL_H * (1.0 + H[0]); };
+  if (model.params().q > 0.0 && model.params().aging == AgingLaw::NONE && r0 >= 0.0) {
+    // (x_s0 - r0 exact for x_s0 within a factor 2 of r0, and so is its difference with y there)
+    const double gap = (xs0 - r0) - y, inv_v = 1.0 / v;
+    const std::vector<double> pts{0.0, 0.5, 0.75, 0.875, 1.0};
+    auto f = [&](double t) {
+      const double t3 = t * t * t;
+      const double u = (gap + y * (t3 * t)) / xs0;
+      return Vec<1>{{4.0 * y * t3 * model.point_u(u, xs0).nu * inv_v}};
+    };
+    return adaptive<1>(f, pts, tol)[0];
+  }
   const std::vector<double> pts{0.0, 0.5 * y, 0.875 * y, y};
   auto f = [&](double eta) { return Vec<1>{{rate(eta, xs0)}}; };
-  auto tol = [](const Vec<1> &H) { return H[0] > 2.0 * H_CUT ? INF : TOL_H * (1.0 + H[0]); };
   return adaptive<1>(f, pts, tol)[0];
 }
 
@@ -564,7 +586,21 @@ void PiecewiseChebyshev::build(const std::function<double(double)> &f, double a,
     for (int k = 0; k <= n; ++k) c += (k == 0 || k == n ? 0.5 : 1.0) * v[k] * std::cos(PI * j * k / n);
     tail = std::max(tail, std::fabs(c * (j == n ? 1.0 : 2.0) / n));
   }
-  if (tail > tol && b - a > min_width) {
+  // the floor set by the nodes' own rounding: f at a node rounded to a
+  // double differs from f at the exact node by up to |f'| eps |x| / 2,
+  // which puts up to twice that into each coefficient.  Where f is steep
+  // no piece can do better (a kink of survival() in x_s0 at the end of a
+  // life with the prefactor u^q: slopes of 1e6, 36000 pieces of the
+  // smallest width before this floor); 4 |f'| eps |x|, |f'| from the
+  // nodes' differences
+  double slope = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double dx = 0.5 * (b - a) * (std::cos(PI * k / n) - std::cos(PI * (k + 1) / n));
+    slope = std::max(slope, std::fabs(v[k] - v[k + 1]) / dx);
+  }
+  const double floor = 4.0 * slope * std::numeric_limits<double>::epsilon() *
+      std::max(std::fabs(a), std::fabs(b));
+  if (tail > std::max(tol, floor) && b - a > min_width) {
     const double m = 0.5 * (a + b);
     build(f, a, m, tol, min_width);
     build(f, m, b, tol, min_width);
