@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -332,6 +333,31 @@ TEST(ThermalSteady, PrefactorKinkAtTheEndOfALife)
       else EXPECT_NEAR(life.exponent(y, xs0), ref, 1e-12 * ref) << "y " << y << " gap " << gap;
     }
   }
+}
+
+// A piecewise Chebyshev interpolant of a function steeper than its
+// tolerance over the rounding of its nodes: f = 1e7 (x - 0.8) on [0.8,
+// 0.8 + 1e-6] is a polynomial (one piece is exact), but its values at the
+// nodes rounded to doubles scatter by 1e7 ulp(0.8) = 1e-9, above the
+// tolerance 1e-12.  Without the floor of build() the pieces were halved
+// to the smallest width: 2^20 pieces here (survival() in x_s0 near the
+// kink of a life's end: 36000 pieces per y).  With it one piece, exact to
+// that rounding.
+TEST(ThermalSteady, ChebyshevPiecesStopAtTheNodesRounding)
+{
+  auto f = [](double x) { return 1e7 * (x - 0.8); };
+  PiecewiseChebyshev c;
+  c.build(f, 0.8, 0.8 + 1e-6, 1e-12, 1e-12);
+  EXPECT_LE(c.starts().size(), 2u);
+  const double floor = 4.0 * 1e7 * std::numeric_limits<double>::epsilon() * 0.81;
+  for (int k = 0; k <= 100; ++k) {
+    const double x = 0.8 + 1e-8 * k;
+    EXPECT_NEAR(c(x), f(x), floor) << x;
+  }
+  // a smooth function at its tolerance is unaffected: sin on [0, 3] to 1e-12
+  PiecewiseChebyshev s;
+  s.build([](double x) { return std::sin(x); }, 0.0, 3.0, 1e-12, 1e-12);
+  for (int k = 0; k <= 300; ++k) EXPECT_NEAR(s(0.01 * k), std::sin(0.01 * k), 1e-11);
 }
 
 // contacts re-forming at 0.8, close to the thresholds above it, with
