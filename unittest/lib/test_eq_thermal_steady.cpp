@@ -333,6 +333,22 @@ TEST(ThermalSteady, PrefactorKinkAtTheEndOfALife)
       else EXPECT_NEAR(life.exponent(y, xs0), ref, 1e-12 * ref) << "y " << y << " gap " << gap;
     }
   }
+  // x_s0 = r0 + y rounded below r0 + y (the rate is 0 beyond x_s0: the
+  // life ends there) with a small q, whose kink within the life fooled
+  // the quadrature's error estimate (a review's case: 8.6e-8 off)
+  ThermalSlider sq = s;
+  sq.spec.q = 0.05;
+  const ContactLife lq(sq, r0, 0.0);
+  int below = 0;
+  for (int k = 1; k <= 400; ++k) {
+    const double y = 1e-7 * k / 400.0, xs0 = r0 + y;
+    if (!((xs0 - r0) - y < 0.0)) continue;
+    ++below;
+    const double u0 = (xs0 - r0) / xs0;
+    const double ref = xs0 / 1e-8 * series(u0, 0.05, 1e3);
+    EXPECT_NEAR(lq.exponent(y, xs0), ref, 1e-12 * ref) << "y " << y;
+  }
+  EXPECT_GT(below, 50);    // about half of them round down
 }
 
 // A piecewise Chebyshev interpolant of a function steeper than its

@@ -302,8 +302,18 @@ double ContactLife::exponent(double y, double xs0) const
   if (!(model.params().theta > 0.0) || !(y > 0.0)) return 0.0;
   auto tol = [](const Vec<1> &H) { return H[0] > 2.0 * H_CUT ? INF : TOL_H * (1.0 + H[0]); };
   if (model.params().q > 0.0 && model.params().aging == AgingLaw::NONE && r0 >= 0.0) {
-    // (x_s0 - r0 exact for x_s0 within a factor 2 of r0, and so is its difference with y there)
-    const double gap = (xs0 - r0) - y, inv_v = 1.0 / v;
+    // (x_s0 - r0 exact for x_s0 within a factor 2 of r0, and so is its
+    // difference with y there).  A gap below 0 (x_s0 = r0 + y rounded
+    // down, the first node of survival()'s interpolant): the rate is 0
+    // beyond x_s0, so the life ends there, u = 0 (a kink of u^q within the
+    // life fooled the quadrature's error estimate: 8.6e-8 off)
+    double gap = (xs0 - r0) - y;
+    if (gap < 0.0) {
+      y = xs0 - r0;
+      gap = 0.0;
+      if (!(y > 0.0)) return 0.0;
+    }
+    const double inv_v = 1.0 / v;
     const std::vector<double> pts{0.0, 0.5, 0.75, 0.875, 1.0};
     auto f = [&](double t) {
       const double t3 = t * t * t;
@@ -312,7 +322,14 @@ double ContactLife::exponent(double y, double xs0) const
     };
     return adaptive<1>(f, pts, tol)[0];
   }
-  const std::vector<double> pts{0.0, 0.5 * y, 0.875 * y, y};
+  // with aging the threshold rises over the aging length from the start
+  // of the life: points graded from there (a first pass of 45 rates
+  // could miss a rise 1e-4 of y wide, and H jumped by 1e-4 between
+  // neighbouring x_s0: survival()'s interpolant in x_s0 then halved its
+  // pieces to the smallest width, millions of H per y)
+  std::vector<double> pts{0.0};
+  for (double e = aging_length(); e > 0.0 && e < 0.5 * y; e *= 4.0) pts.push_back(e);
+  pts.insert(pts.end(), {0.5 * y, 0.875 * y, y});
   auto f = [&](double eta) { return Vec<1>{{rate(eta, xs0)}}; };
   return adaptive<1>(f, pts, tol)[0];
 }
@@ -586,13 +603,18 @@ void PiecewiseChebyshev::build(const std::function<double(double)> &f, double a,
     for (int k = 0; k <= n; ++k) c += (k == 0 || k == n ? 0.5 : 1.0) * v[k] * std::cos(PI * j * k / n);
     tail = std::max(tail, std::fabs(c * (j == n ? 1.0 : 2.0) / n));
   }
-  // the floor set by the nodes' own rounding: f at a node rounded to a
-  // double differs from f at the exact node by up to |f'| eps |x| / 2,
-  // which puts up to twice that into each coefficient.  Where f is steep
-  // no piece can do better (a kink of survival() in x_s0 at the end of a
-  // life with the prefactor u^q: slopes of 1e6, 36000 pieces of the
-  // smallest width before this floor); 4 |f'| eps |x|, |f'| from the
-  // nodes' differences
+  // the floor set by the nodes' own rounding: the test above takes the
+  // values for f at the exact Chebyshev nodes, but they are f at the
+  // nodes rounded to doubles, which differ by up to |f'| eps |x| / 2 and
+  // put up to twice that into each coefficient.  Where f is steep the
+  // test cannot see below 4 |f'| eps |x| (|f'| from the nodes'
+  // differences), and without this floor the pieces were halved to the
+  // smallest width (a kink of survival()'s h in x_s0 at the end of a
+  // life with the prefactor u^q: slopes of 1e6, 36000 pieces per y).
+  // Such a piece may miss tol pointwise (the interpolant uses the same
+  // rounded nodes): it is narrow (f steep), and survival() only
+  // integrates it (S(y) the same to the bit with and without the floor
+  // at 72 (case, y) points of a review, stop 41)
   double slope = 0.0;
   for (int k = 0; k < n; ++k) {
     const double dx = 0.5 * (b - a) * (std::cos(PI * k / n) - std::cos(PI * (k + 1) / n));
