@@ -351,6 +351,45 @@ TEST(ThermalSteady, PrefactorKinkAtTheEndOfALife)
   EXPECT_GT(below, 50);    // about half of them round down
 }
 
+// The hazard of a life whose threshold ages over a slide (the aging
+// length v tau_a = 1e-14) far shorter than the life (y = 1.24e-10):
+// gaussian thresholds, theta = 0.3, barrier 2 0.25, aging exp 0.05 1,
+// v = 1e-14 (a transient that did not end within minutes before stop 41:
+// the quadrature's first pass missed the rise, H jumped by 1.2e-4
+// between neighbouring x_s0).  Reference: composite Simpson on panels
+// graded geometrically from v tau_a / 64 (2048 intervals each; the rate
+// is smooth on every panel), independent of the adaptive quadrature.
+TEST(ThermalSteady, HazardOfAnAgingLifeFarLongerThanItsAgingLength)
+{
+  ThermalSlider s = uniform_slider(0.3, 1e-14);
+  s.Pc = make_gaussian(1.0, 0.1, 0.0);
+  s.spec.p = 2.0;
+  s.spec.q = 0.25;
+  s.spec.aging = AgingLaw::EXP;
+  s.spec.beta = 0.05;
+  s.spec.tau_a = 1.0;
+  const ContactLife life(s, 0.0, 0.0);
+  const ThermalModel m(s.spec);
+  const double v = 1e-14, y = 1.243011263950279e-10;
+  auto nu = [&](double eta, double xs0) { return m.rate(eta, xs0 * m.factor(eta / v)) / v; };
+  auto simpson = [&](double a, double b, double xs0) {
+    const int n = 2048;
+    const double h = (b - a) / n;
+    double sum = nu(a, xs0) + nu(b, xs0);
+    for (int k = 1; k < n; ++k) sum += (k % 2 ? 4.0 : 2.0) * nu(a + k * h, xs0);
+    return sum * h / 3.0;
+  };
+  for (double xs0 : {1.7630217472596446, 1.763021752466658, 1.0, 0.8}) {
+    std::vector<double> edges{0.0};
+    for (double e = 1e-14 / 64.0; e < y; e *= 2.0) edges.push_back(e);
+    edges.push_back(y);
+    double ref = 0.0;
+    for (size_t i = 0; i + 1 < edges.size(); ++i) ref += simpson(edges[i], edges[i + 1], xs0);
+    // the adaptive tolerance 1e-13 (1 + H), Simpson's error below 1e-14 here
+    EXPECT_NEAR(life.exponent(y, xs0), ref, 2e-13 * (1.0 + ref)) << "x_s0 " << xs0;
+  }
+}
+
 // A piecewise Chebyshev interpolant of a function steeper than its
 // tolerance over the rounding of its nodes: f = 1e7 (x - 0.8) on [0.8,
 // 0.8 + 1e-6] is a polynomial (one piece is exact), but its values at the
