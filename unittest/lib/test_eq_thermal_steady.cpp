@@ -390,6 +390,30 @@ TEST(ThermalSteady, HazardOfAnAgingLifeFarLongerThanItsAgingLength)
   }
 }
 
+// Lives far shorter than a cell (creep: <L> = 3.9e-8, 4e-5 of dx =
+// 1e-3), no delay: every contact re-forms at once, so the attached
+// fraction is 1 at every node, and F(X) is the steady F_k from the first
+// cells on (the first life is the later ones').  Before stop 41 the
+// attached fraction drifted by 8e-13 per cell (1 - W0 lost the digits of
+// S1 = 4e-5) and F(X) rose by 1.4e-8 up to X = 1.4 (S(y) kept ~1e-16 of
+// noise beyond the lives, weighted by the dx/<L> = 2.6e4 re-formations
+// per cell).  The bounds: the steady F_k's tolerance (1.1e-12 absolute,
+// as HardCases above) and rounding of the sums (1e-15)
+TEST(ThermalSteady, TransientOfLivesFarShorterThanACell)
+{
+  ThermalSlider s = uniform_slider(0.3, 1e-8);
+  s.Pc = make_gaussian(1.0, 0.1, 0.0);
+  s.spec.q = 0.25;
+  s.r0 = s.start = 0.5;
+  const double Fk = thermal_steady_state(s).F;
+  const MEResult r = thermal_transient(s, 1e-3, 8.0, false);
+  for (size_t j = 1; j < r.F.size(); j += 250) {
+    EXPECT_NEAR(r.attached[j], 1.0, 1e-14) << "X " << r.X[j];
+    EXPECT_NEAR(r.F[j], Fk, 1.2e-12) << "X " << r.X[j];
+  }
+  EXPECT_NEAR(r.F.back(), Fk, 1.2e-12);
+}
+
 // A piecewise Chebyshev interpolant of a function steeper than its
 // tolerance over the rounding of its nodes: f = 1e7 (x - 0.8) on [0.8,
 // 0.8 + 1e-6] is a polynomial (one piece is exact), but its values at the

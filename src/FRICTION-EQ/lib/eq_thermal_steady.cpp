@@ -372,7 +372,12 @@ double ContactLife::survival(double y) const
   auto f = [&](double xs0) { return Vec<1>{{P.pdf(xs0) * hc(xs0)}}; };
   auto tol = [](const Vec<1> &) { return TOL_S; };
   const double broken = adaptive<1>(f, pts, tol, MAX_INTERVALS + pts.size())[0];
-  return std::max(0.0, alive - broken) / norm;
+  // what is left below the accuracy of broken (TOL_S) is 0: beyond the
+  // lives S(y) would otherwise stay at that noise, which the transient
+  // sums over its cells, each weighted by the re-formations per cell,
+  // dx/<L> (lives of 4e-8: F(X) 1e-8 off at X = 8)
+  const double left = alive - broken;
+  return left > TOL_S ? left / norm : 0.0;
 }
 
 namespace {
@@ -834,6 +839,12 @@ MEResult ThermalTransient::solve(double dx, double Xmax) const
   }
   const DelayKernel D = delay_kernel(s, dx, N + 1);
   const double G0 = D.g[0], W0 = S ? K.W[0] : 0.0;
+  // 1 - W0 G0 without its cancellation: W0 = 1 - S1 (S1: alive a cell
+  // after re-forming), and where lives are far shorter than a cell S1 is
+  // small and 1 - W0 kept only the digits S1 has above 1e-16: the
+  // attached fraction drifted by 8e-13 per cell, F(X) by 5e-16/<L>
+  // (lives of 4e-8: 1.4e-8 at X = 8)
+  const double denom = S ? (1.0 - G0) + G0 * K.S[1] : 1.0;
 
   MEResult r;
   r.dx = dx;
@@ -858,7 +869,7 @@ MEResult ThermalTransient::solve(double dx, double Xmax) const
     if (S) {
       for (size_t q = 1; q < D.g.size() && static_cast<long>(q) <= j; ++q) R += b[j - q] * D.g[q];
       R += D.tail * acc;
-      b[j] = (B + W0 * R) / (1.0 - W0 * G0);
+      b[j] = (B + W0 * R) / denom;
       rf[j] = R + G0 * b[j];
       acc = acc * D.q + b[j];
     } else {
