@@ -372,12 +372,12 @@ double ContactLife::survival(double y) const
   auto f = [&](double xs0) { return Vec<1>{{P.pdf(xs0) * hc(xs0)}}; };
   auto tol = [](const Vec<1> &) { return TOL_S; };
   const double broken = adaptive<1>(f, pts, tol, MAX_INTERVALS + pts.size())[0];
-  // what is left below the accuracy of broken (TOL_S) is 0: beyond the
-  // lives S(y) would otherwise stay at that noise, which the transient
-  // sums over its cells, each weighted by the re-formations per cell,
-  // dx/<L> (lives of 4e-8: F(X) 1e-8 off at X = 8)
+  // what is left below the accuracy of broken (TOL_S, of the normalised
+  // S) is 0: beyond the lives S(y) would otherwise stay at that noise,
+  // which the transient sums over its cells, each weighted by the
+  // re-formations per cell, dx/<L> (lives of 4e-8: F(X) 1e-8 off at X = 8)
   const double left = alive - broken;
-  return left > TOL_S ? left / norm : 0.0;
+  return left > TOL_S * norm ? left / norm : 0.0;
 }
 
 namespace {
