@@ -284,6 +284,14 @@ std::vector<double> ContactLife::kinks() const
   return k;
 }
 
+namespace {
+// the hazard's tolerance; none once H is beyond H_CUT for sure
+double hazard_tol(const Vec<1> &H)
+{
+  return H[0] > 2.0 * H_CUT ? INF : TOL_H * (1.0 + H[0]);
+}
+}    // namespace
+
 // H(y; x_s0): the rate grows toward y (u falls), the initial intervals
 // are graded toward it; stops once H is beyond H_CUT for sure.  With a
 // prefactor u^q (q > 0) the rate is not smooth where u reaches 0: at the
@@ -300,28 +308,8 @@ std::vector<double> ContactLife::kinks() const
 double ContactLife::exponent(double y, double xs0) const
 {
   if (!(model.params().theta > 0.0) || !(y > 0.0)) return 0.0;
-  auto tol = [](const Vec<1> &H) { return H[0] > 2.0 * H_CUT ? INF : TOL_H * (1.0 + H[0]); };
-  if (model.params().q > 0.0 && model.params().aging == AgingLaw::NONE && r0 >= 0.0) {
-    // (x_s0 - r0 exact for x_s0 within a factor 2 of r0, and so is its
-    // difference with y there).  A gap below 0 (x_s0 = r0 + y rounded
-    // down, the first node of survival()'s interpolant): the rate is 0
-    // beyond x_s0, so the life ends there, u = 0 (a kink of u^q within the
-    // life fooled the quadrature's error estimate: 8.6e-8 off)
-    double gap = (xs0 - r0) - y;
-    if (gap < 0.0) {
-      y = xs0 - r0;
-      gap = 0.0;
-      if (!(y > 0.0)) return 0.0;
-    }
-    const double inv_v = 1.0 / v;
-    const std::vector<double> pts{0.0, 0.5, 0.75, 0.875, 1.0};
-    auto f = [&](double t) {
-      const double t3 = t * t * t;
-      const double u = (gap + y * (t3 * t)) / xs0;
-      return Vec<1>{{4.0 * y * t3 * model.point_u(u, xs0).nu * inv_v}};
-    };
-    return adaptive<1>(f, pts, tol)[0];
-  }
+  if (model.params().q > 0.0 && model.params().aging == AgingLaw::NONE && r0 >= 0.0)
+    return exponent_kinked(y, xs0);
   // with aging the threshold rises over the aging length from the start
   // of the life: points graded from there (a first pass of 45 rates
   // could miss a rise 1e-4 of y wide, and H jumped by 1e-4 between
@@ -331,7 +319,31 @@ double ContactLife::exponent(double y, double xs0) const
   for (double e = aging_length(); e > 0.0 && e < 0.5 * y; e *= 4.0) pts.push_back(e);
   pts.insert(pts.end(), {0.5 * y, 0.875 * y, y});
   auto f = [&](double eta) { return Vec<1>{{rate(eta, xs0)}}; };
-  return adaptive<1>(f, pts, tol)[0];
+  return adaptive<1>(f, pts, hazard_tol)[0];
+}
+
+// exponent() for q > 0 without aging and r0 >= 0: in t, eta = y (1 - t^4) (see there)
+double ContactLife::exponent_kinked(double y, double xs0) const
+{
+  // (x_s0 - r0 exact for x_s0 within a factor 2 of r0, and so is its
+  // difference with y there).  A gap below 0 (x_s0 = r0 + y rounded
+  // down, the first node of survival()'s interpolant): the rate is 0
+  // beyond x_s0, so the life ends there, u = 0 (a kink of u^q within the
+  // life fooled the quadrature's error estimate: 8.6e-8 off)
+  double gap = (xs0 - r0) - y;
+  if (gap < 0.0) {
+    y = xs0 - r0;
+    gap = 0.0;
+    if (!(y > 0.0)) return 0.0;
+  }
+  const double inv_v = 1.0 / v;
+  const std::vector<double> pts{0.0, 0.5, 0.75, 0.875, 1.0};
+  auto f = [&](double t) {
+    const double t3 = t * t * t;
+    const double u = (gap + y * (t3 * t)) / xs0;
+    return Vec<1>{{4.0 * y * t3 * model.point_u(u, xs0).nu * inv_v}};
+  };
+  return adaptive<1>(f, pts, hazard_tol)[0];
 }
 
 double ContactLife::survival(double y) const

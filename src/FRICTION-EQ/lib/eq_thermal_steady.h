@@ -132,6 +132,7 @@ class ContactLife {
   double rate(double y, double xs0) const { return model.rate(r0 + y, xs0 * factor(y)) / v; }
   double zone_start(double xs0, double ys) const;
   double rate_noise(double y, double xs0) const;
+  double exponent_kinked(double y, double xs0) const;
 };
 
 struct ThermalSteady {
