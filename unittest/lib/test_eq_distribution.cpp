@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -243,6 +244,32 @@ TEST(Distributions, SampleAboveIsConditional)
   }
   // nothing above the support
   EXPECT_TRUE(std::isnan(make_uniform(0.75, 1.25)->sample_above(1.3, draw(1, 1, 1, 0))));
+}
+
+// the inverse-transform draw, written out: the upper tail below u = 1/2,
+// the lower above (a family's own sample(), as the uniform's branch-free
+// one, must give these numbers to the bit)
+TEST(Distributions, SampleIsTheInverseTransformOfTheBetterTail)
+{
+  std::vector<Uniform> us;
+  for (const uint64_t k : {uint64_t(0), uint64_t(1), (uint64_t(1) << 51) - 1, uint64_t(1) << 51,
+                           (uint64_t(1) << 51) + 1, (uint64_t(1) << 52) - 1})
+    us.push_back(uniform_from_bits(k << 12));
+  for (int i = 0; i < 4000; ++i) us.push_back(draw(3, i, 7, STREAM_THRESHOLD));
+  std::vector<Case> all = cases();
+  all.push_back({"uniform_about_0", make_uniform(-0.3, 0.3), -0.3, 0.3});
+  for (const auto &c : all) {
+    const Distribution &d = *c.d;
+    int low = 0;
+    for (const Uniform &u : us) {
+      const double want = u.u < 0.5 ? d.isf(u.u) : d.quantile(u.one_minus_u);
+      const double got = d.sample(u);
+      ASSERT_EQ(std::memcmp(&want, &got, sizeof want), 0) << c.name << " u " << u.u;
+      low += u.u < 0.5;
+    }
+    EXPECT_GT(low, 1000) << c.name;    // both tails taken
+    EXPECT_LT(low, 3000) << c.name;
+  }
 }
 
 TEST(Distributions, DeltaIsAPointMass)

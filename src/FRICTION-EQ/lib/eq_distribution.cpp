@@ -51,6 +51,19 @@ double clamp(double x, double lo, double hi)
   return x < lo ? lo : (x > hi ? hi : x);
 }
 
+// yes ? a : b by the bits (compilers turn the plain conditional into a branch)
+double select(bool yes, double a, double b)
+{
+  uint64_t ia, ib;
+  std::memcpy(&ia, &a, sizeof ia);
+  std::memcpy(&ib, &b, sizeof ib);
+  const uint64_t m = uint64_t(0) - static_cast<uint64_t>(yes);
+  const uint64_t r = (ia & m) | (ib & ~m);
+  double out;
+  std::memcpy(&out, &r, sizeof out);
+  return out;
+}
+
 double normal_pdf(double z)
 {
   return INV_SQRT2PI * std::exp(-0.5 * z * z);
@@ -66,7 +79,7 @@ double normal_sf_antideriv(double z)
 
 /* ---------------------------------------------------------------------- */
 
-class UniformDist : public Distribution {
+class UniformDist final : public Distribution {
  public:
   UniformDist(double a, double b) : a(a), b(b), w(b - a) {}
   DistKind kind() const override { return DistKind::UNIFORM; }
@@ -78,6 +91,13 @@ class UniformDist : public Distribution {
   double sf(double x) const override { return clamp((b - x) / w, 0.0, 1.0); }
   double quantile(double p) const override { return a + clamp(p, 0.0, 1.0) * w; }
   double isf(double q) const override { return b - clamp(q, 0.0, 1.0) * w; }
+  // Distribution::sample()'s numbers: both tails computed, one chosen
+  // without a branch (u < 1/2 is a coin flip the processor cannot predict;
+  // a break of fix eq/contacts draws its threshold here)
+  double sample(const Uniform &u) const override
+  {
+    return select(u.u < 0.5, isf(u.u), quantile(u.one_minus_u));
+  }
   double sf_integral(double lo, double hi) const override { return G(hi) - G(lo); }
   double partial_mean(double lo, double hi) const override
   {

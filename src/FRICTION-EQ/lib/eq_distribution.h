@@ -87,8 +87,9 @@ class Distribution {
   double hazard(double x) const;    // pdf/sf: breaking rate per unit stretch
 
   // Inverse-transform draw from a uniform variate (the tail with the
-  // better precision is used).
-  double sample(const Uniform &u) const;
+  // better precision is used).  A family may override it with the same
+  // numbers, faster
+  virtual double sample(const Uniform &u) const;
   // Draw conditioned on X > lo.  Returns NaN when P(X > lo) = 0.
   double sample_above(double lo, const Uniform &u) const;
 };
