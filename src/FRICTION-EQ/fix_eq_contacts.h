@@ -160,15 +160,18 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void record_members(const int *list, int n, bool exact);
   void new_version(const int *list, int n, const double *dq, bool exact, bool members_changed);
   void apply(bool allow_breaks);
-  template <bool ORTHOGONAL> long scan(const EQUtil::Unwrap &unwrap, bool allow_breaks);
+  template <bool ORTHOGONAL, bool ALL> long scan(const EQUtil::Unwrap &unwrap, bool allow_breaks);
   bool attached(const double *st) const;
   void store_sums(double fsum, double esum, double ssum, double natt, double ncount);
-  template <bool ORTHOGONAL, bool THERMAL> long scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt);
+  template <bool ORTHOGONAL, bool THERMAL, bool ALL>
+  long scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt);
   bool settle_thermal(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt, long &nb);
   bool settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, double xu, bool allow_breaks,
                            double dt, long &nb);
-  bool settle(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, long &nb);
-  bool settle_scan(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, long &nb);
+  bool settle(double *st, int i, double xu, const EQUtil::Unwrap &unwrap, bool allow_breaks,
+              long &nb);
+  bool settle_scan(double *st, int i, double xu, const EQUtil::Unwrap &unwrap, bool allow_breaks,
+                   long &nb);
   void apply_forces();
   void tally(double **f);
   void outputs_before_run();

@@ -168,3 +168,50 @@ run 0
     assert ok.returncode == 0 and "ERROR" not in ok.stdout, ok.stdout[-2000:]
     bad = mpmd(b)         # rank 0 cannot see it: a clean error on all ranks
     assert "ERROR: Fix eq/contacts threshold table: cannot open table file 'pc.table'" in bad.stdout
+
+
+GROUP_INPUT = """
+units lj
+dimension 2
+atom_style atomic
+boundary p p p
+lattice hex 1.1547005383792515
+region box block 0 20 0 10 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+comm_modify cutoff 0.5
+group same type 1
+fix c ${grp} eq/contacts 1.0 7 threshold uniform 0.75 1.25 ${extra}
+velocity all set 1.0 0.0 0.0 units box
+fix slide all nve/noforce
+timestep 0.01
+thermo_style custom step f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6] f_c[7] f_c[8]
+thermo_modify norm no format float %.17g
+thermo 100
+dump d all custom 250 ${grp}.dump id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6]
+dump_modify d sort id format float %.17g
+run 1000
+"""
+
+
+def test_group_all_and_the_same_atoms_in_another_group(tmp_path):
+    """fix eq/contacts on group all skips the atoms' masks (its loop does
+    not read them): the same atoms in another group (its own bit, masks
+    read) give the same numbers to the bit, every global and per-atom
+    output, athermal and thermal, on 1 and 2 ranks."""
+    inp = tmp_path / "in.groups"
+    inp.write_text(GROUP_INPUT)
+    extras = ["", "reform uniform -0.2 0.2 crossing exact",
+              "thermal 0.02 1 1 barrier 2 0.25", "aging log 0.05 1 delay exp 10"]
+    for extra in extras:
+        for ranks in (1, 2):
+            out = {}
+            for grp in ("all", "same"):
+                log = eqtools.run_lammps(inp, {"grp": grp, "extra": extra}, nprocs=ranks, cwd=tmp_path)
+                rows = [l for l in log.splitlines() if len(l.split()) == 9 and l.split()[0].isdigit()]
+                dump = (tmp_path / f"{grp}.dump").read_text()
+                out[grp] = (rows, dump)
+            rows, dump = out["all"]
+            assert len(rows) == 11 and float(rows[-1].split()[3]) > 300, extra   # broke while sliding
+            assert out["same"] == out["all"], (extra, ranks)
