@@ -37,6 +37,8 @@
 #include "error.h"
 #include "force.h"
 #include "group.h"
+#include "modify.h"
+#include "neighbor.h"
 #include "pair.h"
 #include "respa.h"
 #include "update.h"
@@ -65,7 +67,8 @@ enum { SUM_FORCE, SUM_BREAKS, SUM_ATTACHED, SUM_ENERGY, SUM_STRETCH, SUM_COUNT, 
 const char *KEYWORDS = "threshold, reform, stiffness, dir, crossing, start, reform_as, avalanches, "
                        "thermal, barrier, aging, delay, rest";
 constexpr double NOT_A_CONTACT = std::numeric_limits<double>::quiet_NaN();
-// the bit of group all (Group: group 0, in every atom's mask)
+// the bit of group all (Group: group 0; set in the mask of every atom
+// LAMMPS creates, cleared only by commands such as group all subtract)
 constexpr int ALL_GROUPBIT = 1;
 }    // namespace
 
@@ -129,7 +132,8 @@ struct FixEQContacts::Args {
 
 FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
     FixEQPerAtom(lmp, narg, arg), break_tol(0.0), interacting(0), avfp(nullptr), av_flag(0),
-    rounds_last(0), ran(0), in_setup(0), nevaluation(0), nversion(0), chg_from(-1)
+    rounds_last(0), ran(0), in_setup(0), masks_full(0), mask_writer(0), masks_builds(-1),
+    nevaluation(0), nversion(0), chg_from(-1)
 {
   EQCite::add(lmp);
   name = fmt::format("fix {} eq/contacts", id);
@@ -352,6 +356,13 @@ void FixEQContacts::init()
   if (field && utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix eq/contacts with pair style eq/elastic does not support run_style "
                       "respa; allowed: run_style verlet");
+  // fixes that rewrite atoms' masks within a step (insertions and
+  // exclusions of the MC package, fix srp's bond particles, fix
+  // bond/react's new atoms): the loops then read every mask
+  mask_writer = 0;
+  for (int i = 0; i < modify->nfix; i++)
+    for (const char *writer : {"^gcmc", "^gemc", "^charge/regulation", "^srp", "^bond/react"})
+      if (utils::strmatch(modify->fix[i]->style, writer)) mask_writer = 1;
   // the tolerance of the breaking test: that of a driver that lands the
   // slider exactly on the next break (fix eq/quasistatic), else none
   break_tol = 0.0;
@@ -400,6 +411,27 @@ void FixEQContacts::mark_departed()
     if (!(mask[i] & groupbit)) model->depart(state[i]);
 }
 
+// whether every local atom carries group all's bit (LAMMPS can clear it:
+// group all subtract all G); atoms arrive and are created only at a
+// neighbor build, so the answer holds until the next one
+void FixEQContacts::check_masks()
+{
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  int full = 1;
+  for (int i = 0; i < nlocal && full; i++) full = mask[i] & ALL_GROUPBIT;
+  masks_full = full ? 1 : 0;
+  masks_builds = neighbor->ncalls;
+}
+
+// the loops may skip the masks (see masks_full)
+bool FixEQContacts::masks_skippable()
+{
+  if (groupbit != ALL_GROUPBIT || mask_writer) return false;
+  if (masks_builds != neighbor->ncalls) check_masks();
+  return masks_full != 0;
+}
+
 void FixEQContacts::setup_pre_force(int /*vflag*/)
 {
   ++nevaluation;
@@ -426,6 +458,7 @@ void FixEQContacts::setup(int vflag)
   ran = 1;
   if (!field) {
     mark_departed();
+    check_masks();
     // no interaction in this run: a field left by an earlier run with
     // pair eq/elastic would be stale (per-atom output, next_event())
     for (int i = 0; i < atom->nlocal; i++) state[i][CS_FIELD] = 0.0;
@@ -449,6 +482,7 @@ void FixEQContacts::min_setup(int /*vflag*/)
     return;
   }
   mark_departed();
+  check_masks();
   apply(false);
 }
 
@@ -509,7 +543,7 @@ void FixEQContacts::apply(bool allow_breaks)
     const double dt = in_setup || !allow_breaks ? 0.0 : update->dt;
     const bool hot = model->thermal_model().params().thermal();
     const bool orthogonal = unwrap.orthogonal();
-    const bool all = orthogonal && groupbit == ALL_GROUPBIT;
+    const bool all = orthogonal && masks_skippable();
     if (model->thermal_active() && all)
       nb = hot ? scan_thermal<true, true, true>(unwrap, allow_breaks, dt)
                : scan_thermal<true, false, true>(unwrap, allow_breaks, dt);
@@ -531,8 +565,8 @@ void FixEQContacts::apply(bool allow_breaks)
   local_sum[SUM_BREAKS] = static_cast<double>(nb);
 }
 
-// returns the number of breaks.  ALL: the fix's group is all (every
-// atom's mask has its bit: the masks are not read)
+// returns the number of breaks.  ALL: the fix's group is all and every
+// local atom has its bit (masks_skippable()): the masks are not read
 template <bool ORTHOGONAL, bool ALL>
 long FixEQContacts::scan(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks)
 {

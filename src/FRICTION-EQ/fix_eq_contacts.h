@@ -115,6 +115,11 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   int rounds_last;                 // rounds of the last step's avalanche
   int ran;                         // a run or minimization has set this fix up
   int in_setup;                    // in setup(): no time passes
+  // the loops may skip the masks (group all, every local atom with its
+  // bit): valid while neighbor->ncalls equals masks_builds, checked anew
+  // in every set-up; never with a fix that rewrites masks within a step
+  int masks_full, mask_writer;
+  bigint masks_builds;
 
   // the coordinates this fix owns for the field: the stretches of the
   // local contacts at the current evaluation (NaN: not a contact), the
@@ -162,6 +167,8 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void apply(bool allow_breaks);
   template <bool ORTHOGONAL, bool ALL> long scan(const EQUtil::Unwrap &unwrap, bool allow_breaks);
   bool attached(const double *st) const;
+  void check_masks();
+  bool masks_skippable();
   void store_sums(double fsum, double esum, double ssum, double natt, double ncount);
   template <bool ORTHOGONAL, bool THERMAL, bool ALL>
   long scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt);

@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -52,7 +53,7 @@ double clamp(double x, double lo, double hi)
 }
 
 // yes ? a : b by the bits (compilers turn the plain conditional into a branch)
-double select(bool yes, double a, double b)
+double select_bits(bool yes, double a, double b)
 {
   uint64_t ia, ib;
   std::memcpy(&ia, &a, sizeof ia);
@@ -96,7 +97,7 @@ class UniformDist final : public Distribution {
   // a break of fix eq/contacts draws its threshold here)
   double sample(const Uniform &u) const override
   {
-    return select(u.u < 0.5, isf(u.u), quantile(u.one_minus_u));
+    return select_bits(u.u < 0.5, isf(u.u), quantile(u.one_minus_u));
   }
   double sf_integral(double lo, double hi) const override { return G(hi) - G(lo); }
   double partial_mean(double lo, double hi) const override
