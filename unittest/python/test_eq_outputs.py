@@ -23,6 +23,18 @@ def thermo_rows(log):
 
 
 EPS = np.finfo(float).eps
+# 400 atoms on a hex lattice in a periodic 2d box, one per contact
+LATTICE_400 = """
+units lj
+dimension 2
+atom_style atomic
+lattice hex 1.1547005383792515
+region box block 0 20 0 10 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+comm_modify cutoff 0.5
+"""
 
 
 def check_against_the_model(rows, dump_path):
@@ -90,16 +102,7 @@ def test_atoms_leaving_and_rejoining_the_group(tmp_path):
     """An atom that leaves the fix group stops being a contact; when it
     comes back it forms a fresh, relaxed contact (its break count kept)."""
     inp = tmp_path / "in.group"
-    inp.write_text("""
-units lj
-dimension 2
-atom_style atomic
-lattice hex 1.1547005383792515
-region box block 0 20 0 10 -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-mass 1 1.0
-comm_modify cutoff 0.5
+    inp.write_text(LATTICE_400 + """
 atom_modify sort 0 0.0
 group g id 1:400
 group back id 201:400
@@ -170,17 +173,7 @@ run 0
     assert "ERROR: Fix eq/contacts threshold table: cannot open table file 'pc.table'" in bad.stdout
 
 
-GROUP_INPUT = """
-units lj
-dimension 2
-atom_style atomic
-boundary p p p
-lattice hex 1.1547005383792515
-region box block 0 20 0 10 -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-mass 1 1.0
-comm_modify cutoff 0.5
+GROUP_INPUT = LATTICE_400 + """
 group same type 1
 group keep type 1
 group sub id 1:210
