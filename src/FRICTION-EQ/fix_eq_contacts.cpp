@@ -361,7 +361,7 @@ void FixEQContacts::init()
   // bond/react's new atoms): the loops then read every mask
   mask_writer = 0;
   for (int i = 0; i < modify->nfix; i++)
-    for (const char *writer : {"^gcmc", "^gemc", "^charge/regulation", "^srp", "^bond/react"})
+    for (const char *writer : {"^gcmc", "^gemc", "^charge/regulation", "^SRP", "^bond/react"})
       if (utils::strmatch(modify->fix[i]->style, writer)) mask_writer = 1;
   // the tolerance of the breaking test: that of a driver that lands the
   // slider exactly on the next break (fix eq/quasistatic), else none
@@ -520,6 +520,9 @@ void FixEQContacts::min_post_force(int /*vflag*/)
 // (pre no); it is checked before each use and found afresh in init()
 void FixEQContacts::post_run()
 {
+  // a next run with pre no has no set-up: the masks are checked anew at
+  // its first evaluation (group all subtract may come in between)
+  masks_builds = -1;
   if (EQElasticField *f = EQLink::live_pair(field, force)) f->field_report();
 }
 

@@ -176,7 +176,8 @@ run 0
 GROUP_INPUT = LATTICE_400 + """
 group same type 1
 group keep type 1
-group sub id 1:210
+region slab block 5 9.6 INF INF INF INF
+group sub region slab
 if "${cut} == before" then "group ${grp} subtract ${grp} sub"
 fix c ${grp} eq/contacts 1.0 7 threshold uniform 0.75 1.25 ${extra}
 velocity keep set 1.0 0.0 0.0 units box
@@ -189,7 +190,7 @@ dump d keep custom 250 ${grp}.dump id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6]
 dump_modify d sort id format float %.17g
 run 500
 if "${cut} == between" then "group ${grp} subtract ${grp} sub"
-run 500
+run 500 pre ${pre}
 """
 
 
@@ -199,23 +200,30 @@ def test_group_all_and_the_same_atoms_in_another_group(tmp_path):
     own bit, masks read) give the same numbers to the bit, every global
     and per-atom output, athermal and thermal, on 1 and 2 ranks.  LAMMPS
     can take atoms out of group all (group all subtract all G): before
-    the fix is defined, or between runs, the same subtraction applied to
-    the other group gives the same numbers too."""
+    the fix is defined, or between runs (also with pre no, where the
+    run has no set-up), the same subtraction applied to the other group
+    gives the same numbers too.  The subtracted slab, x in [5, 9.5], lies
+    on rank 0 of 2 and slides onto rank 1 during the run: rank 1 starts
+    with every mask set and must find the arrivals at a neighbor build."""
     inp = tmp_path / "in.groups"
     inp.write_text(GROUP_INPUT)
-    cases = [("", "no", 1), ("", "no", 2), ("reform uniform -0.2 0.2 crossing exact", "no", 1),
-             ("thermal 0.02 1 1 barrier 2 0.25", "no", 2), ("aging log 0.05 1 delay exp 10", "no", 1),
-             ("", "before", 1), ("", "between", 2), ("thermal 0.02 1 1", "between", 1)]
-    for extra, cut, ranks in cases:
+    cases = [("", "no", "yes", 1), ("", "no", "yes", 2),
+             ("reform uniform -0.2 0.2 crossing exact", "no", "yes", 1),
+             ("thermal 0.02 1 1 barrier 2 0.25", "no", "yes", 2),
+             ("aging log 0.05 1 delay exp 10", "no", "yes", 1),
+             ("", "before", "yes", 1), ("", "before", "yes", 2),
+             ("thermal 0.02 1 1", "before", "yes", 2), ("", "between", "yes", 2),
+             ("", "between", "no", 1), ("thermal 0.02 1 1", "between", "no", 2)]
+    for extra, cut, pre, ranks in cases:
         out = {}
         for grp in ("all", "same"):
-            log = eqtools.run_lammps(inp, {"grp": grp, "extra": extra, "cut": cut}, nprocs=ranks,
-                                     cwd=tmp_path)
+            log = eqtools.run_lammps(inp, {"grp": grp, "extra": extra, "cut": cut, "pre": pre},
+                                     nprocs=ranks, cwd=tmp_path)
             rows = [l for l in log.splitlines() if len(l.split()) == 9 and l.split()[0].isdigit()]
             dump = (tmp_path / f"{grp}.dump").read_text()
             out[grp] = (rows, dump)
         rows = out["all"][0]
         counts = [float(r.split()[7]) for r in rows]    # f_c[7]: contacts of the group
         assert len(rows) == 12 and float(rows[-1].split()[3]) > 300, extra   # broke while sliding
-        assert counts[-1] == (190 if cut != "no" else 400), (extra, cut)
-        assert out["same"] == out["all"], (extra, cut, ranks)
+        assert counts[-1] == (300 if cut != "no" else 400), (extra, cut)   # 100 in the slab
+        assert out["same"] == out["all"], (extra, cut, pre, ranks)
