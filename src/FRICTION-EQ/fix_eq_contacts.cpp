@@ -357,7 +357,7 @@ void FixEQContacts::init()
     error->all(FLERR, "Fix eq/contacts with pair style eq/elastic does not support run_style "
                       "respa; allowed: run_style verlet");
   // fixes that rewrite atoms' masks within a step (insertions and
-  // exclusions of the MC package, fix srp's bond particles, fix
+  // exclusions of the MC package, pair srp's bond particles (fix SRP), fix
   // bond/react's new atoms): the loops then read every mask
   mask_writer = 0;
   for (int i = 0; i < modify->nfix; i++)
