@@ -458,7 +458,6 @@ void FixEQContacts::setup(int vflag)
   ran = 1;
   if (!field) {
     mark_departed();
-    check_masks();
     // no interaction in this run: a field left by an earlier run with
     // pair eq/elastic would be stale (per-atom output, next_event())
     for (int i = 0; i < atom->nlocal; i++) state[i][CS_FIELD] = 0.0;
@@ -482,7 +481,6 @@ void FixEQContacts::min_setup(int /*vflag*/)
     return;
   }
   mark_departed();
-  check_masks();
   apply(false);
 }
 
@@ -520,8 +518,8 @@ void FixEQContacts::min_post_force(int /*vflag*/)
 // (pre no); it is checked before each use and found afresh in init()
 void FixEQContacts::post_run()
 {
-  // a next run with pre no has no set-up: the masks are checked anew at
-  // its first evaluation (group all subtract may come in between)
+  // the masks are checked anew at the next run's first evaluation (group
+  // all subtract may come in between; a run with pre no has no set-up)
   masks_builds = -1;
   if (EQElasticField *f = EQLink::live_pair(field, force)) f->field_report();
 }

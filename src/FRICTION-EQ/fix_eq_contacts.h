@@ -116,9 +116,9 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   int ran;                         // a run or minimization has set this fix up
   int in_setup;                    // in setup(): no time passes
   // the loops may skip the masks (group all, every local atom with its
-  // bit): valid while neighbor->ncalls equals masks_builds, checked anew
-  // in every set-up and after every run (masks_builds = -1); never with a
-  // fix that rewrites masks within a step
+  // bit): valid while neighbor->ncalls equals masks_builds (-1 at the
+  // fix's definition and after every run); never with a fix that
+  // rewrites masks within a step
   int masks_full, mask_writer;
   bigint masks_builds;
 
