@@ -379,8 +379,11 @@ void FixEQContacts::init()
   }
 }
 
-// formed, and not waiting to re-form (temperature, aging or delays)
-bool FixEQContacts::attached(const double *st) const
+// formed, and not waiting to re-form (temperature, aging or delays).
+// (inline: called per contact and step by the loops of this file; a
+// function of a shared library that is not could be interposed, and
+// every call would go through the PLT)
+inline bool FixEQContacts::attached(const double *st) const
 {
   return st[CS_THRESHOLD] > 0.0 && !model->waiting(st);
 }
