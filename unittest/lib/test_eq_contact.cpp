@@ -16,6 +16,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -590,6 +591,49 @@ TEST(Avalanche, RunawayIsAnError)
   std::vector<int> members{0, 1}, list;
   std::vector<double> ds;
   EXPECT_THROW(avalanche(m, ra.data(), members.data(), n, 0.0, f, list, ds), BreakError);
+}
+
+// the rounds of a model without temperature or aging at tol = 0 take a
+// test of their own (without the general one's loads and branches): the
+// same avalanche, to the last bit, as the general test, reached here with
+// a tolerance of 1e-300 (below the rounding of any threshold here, so
+// that x_s - tol = x_s), for contacts at and within 1e-17 of their
+// thresholds, both signs, every round testing every contact or the named
+// ones
+TEST(Avalanche, ThePlainTestIsTheGeneralOne)
+{
+  const int n = 30;
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  long breaks = 0;
+  for (const bool exact : {true, false}) {
+    const ContactModel m = model(exact, exact, spec(make_uniform(-0.3, 0.3), "uniform -0.3 0.3"));
+    for (int trial = 0; trial < 60; ++trial) {
+      // (g = 0: h = 0, and the contacts at gap 0 exactly at |e| = x_s)
+      const double g = trial % 10 == 9 ? 0.0 : std::pow(10.0, -3.0 + 3.0 * u(rng));
+      const bool named = trial % 2 == 0;
+      std::vector<double> gap(n);
+      for (int i = 0; i < n; ++i)
+        gap[i] = i % 7 == 3 ? -0.05 : (i % 5 == 0 ? 0.0 : std::pow(10.0, -17.0 + 10.0 * u(rng)));
+      auto stretch = [&gap](int i, double th) { return th * (1.0 - gap[i]) * (i % 2 ? 1.0 : -1.0); };
+      Rows ca = rows_with(m, n, stretch), cb = rows_with(m, n, stretch);
+      DenseField fa(chain_matrix(n, g), ca.r, named), fb(chain_matrix(n, g), cb.r, named);
+      std::vector<int> members(n);
+      for (int i = 0; i < n; ++i) members[i] = i;
+      std::vector<int> la, lb;
+      std::vector<double> da, db;
+      const AvalancheResult plain = avalanche(m, ca.r.data(), members.data(), n, 0.0, fa, la, da);
+      const AvalancheResult general =
+          avalanche(m, cb.r.data(), members.data(), n, 1.0e-300, fb, lb, db);
+      EXPECT_EQ(plain.size, general.size) << exact << " " << trial;
+      EXPECT_EQ(plain.rounds, general.rounds) << exact << " " << trial;
+      breaks += plain.size;
+      for (int i = 0; i < n; ++i)
+        for (int c = 0; c < CS_NCOL; ++c)
+          EXPECT_EQ(ca.a[i][c], cb.a[i][c]) << exact << " " << trial << " " << i << " " << c;
+    }
+  }
+  EXPECT_GT(breaks, 2 * 60 * 4);
 }
 
 /* ----------------------------------------------------------------------

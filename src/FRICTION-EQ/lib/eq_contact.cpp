@@ -597,28 +597,57 @@ inline bool over(const ContactModel &model, const double *st, double h, double t
   return !(std::fabs(e) < th - ContactModel::tolerance(st, tol));
 }
 
+// over() for a model without temperature or aging (no waiting, x_s =
+// x_s0) and tol = 0: the same test to the bit, without the loads and
+// branches of the general one (the test of every member in a round's
+// first pass, and of every partner of a break after it)
+inline bool over_plain(const double *st, double h)
+{
+  const double th0 = st[CS_THRESHOLD];
+  if (th0 <= 0.0) return false;
+  return !(std::fabs(st[CS_STRETCH] + h / st[CS_STIFFNESS]) < th0);
+}
+
+template <bool PLAIN>
+inline bool over_as(const ContactModel &model, const double *st, double h, double tol)
+{
+  return PLAIN ? over_plain(st, h) : over(model, st, h, tol);
+}
+
 // the contacts over their thresholds at the start of a round, in the
 // order of their rows: among every member, or among the rows whose h
 // changed (tested as named, the few found sorted)
-void candidates(const ContactModel &model, const double *const *rows, const int *members,
-                int nmembers, double tol, const AvalancheField &f, bool all, const double *thermal,
-                std::vector<int> &list)
+template <bool PLAIN>
+void candidates_as(const ContactModel &model, const double *const *rows, const int *members,
+                   int nmembers, double tol, const AvalancheField &f, bool all,
+                   const double *thermal, std::vector<int> &list)
 {
   list.clear();
   if (all || !f.changed) {
     for (int m = 0; m < nmembers; ++m) {
       const int i = members[m];
-      if ((thermal && !std::isnan(thermal[i])) || over(model, rows[i], f.h[i], tol))
+      if ((!PLAIN && thermal && !std::isnan(thermal[i])) ||
+          over_as<PLAIN>(model, rows[i], f.h[i], tol))
         list.push_back(i);
     }
     return;
   }
   for (int m = 0; m < f.nchanged; ++m) {
     const int i = f.changed[m];
-    if (over(model, rows[i], f.h[i], tol)) list.push_back(i);
+    if (over_as<PLAIN>(model, rows[i], f.h[i], tol)) list.push_back(i);
   }
   std::sort(list.begin(), list.end());
   list.erase(std::unique(list.begin(), list.end()), list.end());
+}
+
+void candidates(const ContactModel &model, const double *const *rows, const int *members,
+                int nmembers, double tol, const AvalancheField &f, bool all, const double *thermal,
+                std::vector<int> &list)
+{
+  if (tol == 0.0 && !model.thermal_active() && !thermal)
+    candidates_as<true>(model, rows, members, nmembers, tol, f, all, nullptr, list);
+  else
+    candidates_as<false>(model, rows, members, nmembers, tol, f, all, thermal, list);
 }
 }    // namespace
 
