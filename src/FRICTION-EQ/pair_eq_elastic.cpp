@@ -1005,7 +1005,8 @@ void PairEQElastic::scatter(const EQChangeSet &set)
     const int i = set.list[m];
     bound += 1 + fr[2 * i + 1] - fr[2 * i];
   }
-  hchanged.resize(bound);
+  // (grown, never cleared: only the first nhchanged entries are read)
+  if (hchanged.size() < bound) hchanged.resize(bound);
   int *const hc = hchanged.data();
   int nc = 0;
   gtouched.clear();
@@ -1027,7 +1028,7 @@ void PairEQElastic::scatter(const EQChangeSet &set)
     if (vir_current) vir_pending.emplace_back(i, dq);
     sync_mark(i);
   }
-  hchanged.resize(nc);
+  nhchanged = nc;
   comm_mode = COMM_SHARES;
   EQCompat::reverse_comm(comm, this);
   for (const int j : gtouched) {
@@ -1078,7 +1079,7 @@ void PairEQElastic::change_members(EQCoordinateSource *src, const EQChangeSet &s
   const int *const fr = first.data();
   const int *const jv = pj.data();
   const double *const kv = pk.data();
-  hchanged.clear();
+  nhchanged = 0;
   gtouched.clear();
   joined.clear();
   for (int m = 0; m < set.n; m++) mark_member(set.list[m]);
@@ -1120,7 +1121,7 @@ void PairEQElastic::change_members(EQCoordinateSource *src, const EQChangeSet &s
     }
     h[i] = hi;
     ksum[i] = ki;
-    hchanged.push_back(i);
+    add_changed(i);
   }
   comm_mode = COMM_MEMBERS;
   EQCompat::reverse_comm(comm, this);
@@ -1153,7 +1154,7 @@ void PairEQElastic::member_share(int j, double kj, double m)
     if (std::isnan(q[j])) return;
     ksum[j] += kj;
     h[j] += kj * q[j] - m;
-    hchanged.push_back(j);
+    add_changed(j);
     return;
   }
   if (!tmark[j]) {
@@ -1178,7 +1179,7 @@ EQFieldView PairEQElastic::field_view()
   v.k = ksum;
   if (changed_at == nfield) {
     v.changed = hchanged.data();
-    v.nchanged = static_cast<int>(hchanged.size());
+    v.nchanged = nhchanged;
   }
   return v;
 }
@@ -1438,7 +1439,7 @@ void PairEQElastic::unpack_reverse_comm(int n, int *list_, double *buf)
     const int j = list_[static_cast<int>(buf[1 + 2 * k])];
     if (j < nlocal) {
       h[j] += buf[2 + 2 * k];
-      hchanged.push_back(j);
+      add_changed(j);
     } else
       ghost_share(j, buf[2 + 2 * k]);
   }

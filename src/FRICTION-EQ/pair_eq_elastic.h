@@ -42,6 +42,7 @@ PairStyle(eq/elastic,PairEQElastic);
 #include "eq_field.h"
 #include "eq_kernel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -191,9 +192,16 @@ class PairEQElastic : public Pair, public EQElasticField {
   // a change set's scatter: the ghosts it gave a share of dh (flagged in
   // tmark; dh and tmark are zero outside a scatter), in index order for
   // the sparse reverse communication (gsorted false: to be sorted), and
-  // the local atoms whose h it changed (repeats possible), valid while
-  // nfield == changed_at
+  // the local atoms whose h it changed (repeats possible; the first
+  // nhchanged entries), valid while nfield == changed_at
   std::vector<int> gtouched, hchanged;
+  int nhchanged = 0;
+  void add_changed(int j)
+  {
+    if (static_cast<std::size_t>(nhchanged) == hchanged.size())
+      hchanged.resize(std::max<std::size_t>(64, 2 * hchanged.size()));
+    hchanged[nhchanged++] = j;
+  }
   std::vector<char> tmark;
   bool gsorted;
   bigint changed_at;
