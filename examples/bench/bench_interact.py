@@ -19,8 +19,17 @@
    lambda_c = 3) driven by fixed steps dX, against the quasi-static run
    (fix eq/quasistatic) of the same contacts, which has no step error.
 
-  ./bench_interact.py               both tables
-  ./bench_interact.py --part pair   only the first
+3. Instructions per break (--part instructions; valgrind's callgrind,
+   N = 16384, 300 steps at dX = 0.01, in.bench-break): the run whose
+   contacts break minus the same motion with unbreakable contacts, per
+   break, beside the hand loop's (hand_scatter.cpp's scatter_round
+   alone, the breaks per round of the run): a ratio without the timing
+   noise of a shared machine (instructions, not time: the partner update
+   waits on memory more than the rest of a break does).
+
+  ./bench_interact.py                       the first two tables
+  ./bench_interact.py --part pair           only the first
+  ./bench_interact.py --part instructions   the third
 """
 import argparse
 import re
@@ -131,6 +140,51 @@ def pair_table(sizes, ranks, work, out, repeat):
                   f"{best['lj/cut']['neigh']:.0f}, {best['eq/elastic']['neigh']:.0f}", flush=True)
 
 
+def callgrind(cmd, out, marker):
+    """instructions of the process that ran `marker` under callgrind, and its output"""
+    valgrind = shutil.which("valgrind")
+    if not valgrind:
+        sys.exit("bench_interact.py --part instructions: needs valgrind (apt-get install valgrind)")
+    p = subprocess.run([valgrind, "--tool=callgrind", f"--callgrind-out-file={out}/callgrind.out"]
+                       + [str(c) for c in cmd], cwd=out, stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, text=True, env=eqtools.mpi_env())
+    pid = re.search(r"^==(\d+)== Command: .*%s" % re.escape(marker), p.stdout, re.M)
+    m = pid and re.findall(r"^==%s== Collected : (\d+)" % pid.group(1), p.stdout, re.M)
+    if p.returncode != 0 or not m:
+        raise eqtools.RunError("callgrind run failed:\n" + p.stdout[-3000:])
+    return int(m[-1]), p.stdout
+
+
+def instructions_table(n, steps, out):
+    ny = max(1, int(round((n / 4.0) ** 0.5)))
+    nx = 2 * ny
+    runs = {}
+    for held in ("no", "yes"):
+        cmd = [eqtools.lmp_exe(), "-in", HERE / "in.bench-break", "-log", "none", "-nocite"]
+        for k, v in {"nx": nx, "ny": ny, "steps": steps, "held": held}.items():
+            cmd += ["-var", k, v]
+        ir, text = callgrind(cmd, out, "in.bench-break")
+        before = float(re.search(r"^BEFORE ([0-9.eE+-]+)", text, re.M).group(1))
+        after = float(re.search(r"^AFTER ([0-9.eE+-]+)", text, re.M).group(1))
+        rounds = float(re.search(r"^ROUNDS ([0-9.eE+-]+)", text, re.M).group(1))
+        runs[held] = (ir, after - before, rounds)
+    (ib, nbreaks, rounds), (ih, _, _) = runs["no"], runs["yes"]
+    per_break = (ib - ih) / max(nbreaks, 1.0)
+    per_round = max(1, int(round(nbreaks / steps / max(rounds, 1e-9))))
+    exe = hand_scatter(out)
+    total = 20000
+    ir, _ = callgrind(["--toggle-collect=*scatter_round*", exe, 2 * nx * ny, per_round, total], out,
+                      "hand_scatter")
+    hand = ir / (3 * max(1, total // per_round) * per_round)
+    print(f"instructions per break (callgrind): N = {2 * nx * ny}, {steps} steps at dX = 0.01, "
+          f"{nbreaks / steps:.1f} breaks and {rounds:.2f} rounds per step; the breaking run minus "
+          f"the held one, and the partner update alone (hand_scatter.cpp, {per_round} breaks "
+          f"per round)")
+    print(f"{'N':>8} {'breaks':>8} {'instr/break':>11} {'hand instr/break':>16} {'break/hand':>10}")
+    print(f"{2 * nx * ny:>8} {nbreaks:>8.0f} {per_break:>11.0f} {hand:>16.0f} "
+          f"{per_break / hand:>10.2f}", flush=True)
+
+
 def f_on_grid(d, grid, qs):
     X, F, att = d[:, 1], d[:, 2], d[:, 3]
     if not qs:
@@ -180,7 +234,7 @@ ROOT = HERE.parents[1]
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("--part", choices=["pair", "accuracy", "all"], default="all")
+    ap.add_argument("--part", choices=["pair", "accuracy", "instructions", "all"], default="all")
     ap.add_argument("--sizes", default="4096,65536,1e6")
     ap.add_argument("--ranks", default="1,2")
     ap.add_argument("--work", type=float, default=2e7, help="contact-steps per timed run")
@@ -196,6 +250,8 @@ def main():
                    [int(v) for v in a.ranks.split(",")], a.work, out, a.repeat)
     if a.part in ("accuracy", "all"):
         accuracy_table(a.kappa, a.xmax, out)
+    if a.part == "instructions":
+        instructions_table(16384, 300, out)
 
 
 if __name__ == "__main__":

@@ -16,7 +16,8 @@
    lower bound of a break's work.
 
    g++ -O2 -std=c++17 hand_scatter.cpp
-   ./a.out N B           prints: ns per break, partners per break          */
+   ./a.out N B           prints: ns per break, partners per break
+   ./a.out N B BREAKS    the same with BREAKS breaks per repeat (3 repeats)  */
 
 #include <chrono>
 #include <cmath>
@@ -64,6 +65,19 @@ Lattice triangular(int nx, int ny, double rcut)
   return L;
 }
 
+// one round of b breaks (the timed loop; not inlined, so that valgrind's
+// callgrind can count its instructions alone: --toggle-collect=*scatter_round*)
+__attribute__((noinline)) void scatter_round(const Lattice &L, double *h, const int *who,
+                                             const double *dq, int b)
+{
+  for (int m = 0; m < b; ++m) {
+    const int i = who[m];
+    const double d = dq[m];
+    h[i] += L.ksum[i] * d;
+    for (int p = L.first[2 * i]; p < L.first[2 * i + 1]; ++p) h[L.pj[p]] -= L.pk[p] * d;
+  }
+}
+
 uint64_t next(uint64_t &s)
 {
   s ^= s << 13;
@@ -77,7 +91,7 @@ uint64_t next(uint64_t &s)
 int main(int argc, char **argv)
 {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s N breaks_per_round\n", argv[0]);
+    std::fprintf(stderr, "usage: %s N breaks_per_round [breaks]\n", argv[0]);
     return 1;
   }
   const long n_req = std::atol(argv[1]);
@@ -89,7 +103,8 @@ int main(int argc, char **argv)
   std::vector<int> who(b);
   std::vector<double> dq(b);
   uint64_t s = 88172645463325252ull;
-  const long target = 4000000;    // breaks timed
+  // breaks timed (a third argument: fewer, for callgrind)
+  const long target = argc > 3 ? std::max(1L, std::atol(argv[3])) : 4000000;
   const long rounds = std::max(1L, target / b);
   double best = 1e300;
   for (int rep = 0; rep < 3; ++rep) {
@@ -100,12 +115,7 @@ int main(int argc, char **argv)
         dq[m] = -0.5 - 1e-3 * static_cast<double>(next(s) % 1000);
       }
       const auto t0 = Clock::now();
-      for (int m = 0; m < b; ++m) {
-        const int i = who[m];
-        const double d = dq[m];
-        h[i] += L.ksum[i] * d;
-        for (int p = L.first[2 * i]; p < L.first[2 * i + 1]; ++p) h[L.pj[p]] -= L.pk[p] * d;
-      }
+      scatter_round(L, h.data(), who.data(), dq.data(), b);
       t += std::chrono::duration<double>(Clock::now() - t0).count();
     }
     best = std::min(best, t);
