@@ -167,7 +167,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void new_version(const int *list, int n, const double *dq, bool exact, bool members_changed);
   void apply(bool allow_breaks);
   template <bool ORTHOGONAL, bool ALL> long scan(const EQUtil::Unwrap &unwrap, bool allow_breaks);
-  bool attached(const double *st) const;
+  inline bool attached(const double *st) const;    // defined in the .cpp, used there only
   void check_masks();
   bool masks_skippable();
   void store_sums(double fsum, double esum, double ssum, double natt, double ncount);
