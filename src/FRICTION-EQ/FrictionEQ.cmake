@@ -9,6 +9,8 @@
 #       no external dependency; position-independent (liblammps, plugins)
 #   FEQ_STYLE_SOURCES
 #       the LAMMPS styles of the package (src/FRICTION-EQ/*.cpp)
+#   FEQ_LOCAL_CALLS
+#       compile options for the package's sources (see below)
 #
 # The surface Green tensor solver (lib/eq_green.*, FFTW3 + Eigen3) is not
 # part of feq_core: only the eq-green tool and its tests link it.
@@ -59,6 +61,18 @@ function(feq_check_lammps lammps_dir number text packages)
   endif()
 endfunction()
 
+# FEQ_LOCAL_CALLS: position-independent code calls the functions of its
+# own library through the PLT, so that another library could interpose
+# them, and never inlines them; the package's calls among its own
+# functions (a contact's step, its bounds and draws; a style's helpers)
+# are direct and may be inlined (the same numbers: no other change of code)
+include(CheckCXXCompilerFlag)
+check_cxx_compiler_flag(-fno-semantic-interposition FEQ_HAS_NO_INTERPOSITION)
+set(FEQ_LOCAL_CALLS "")
+if(FEQ_HAS_NO_INTERPOSITION)
+  set(FEQ_LOCAL_CALLS -fno-semantic-interposition)
+endif()
+
 function(feq_add_core)
   file(GLOB _lib CONFIGURE_DEPENDS "${FEQ_PKG_DIR}/lib/*.cpp")
   list(REMOVE_ITEM _lib ${FEQ_GREEN_SOURCES})
@@ -69,4 +83,5 @@ function(feq_add_core)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     target_compile_options(feq_core PRIVATE -Wall -Wextra)
   endif()
+  target_compile_options(feq_core PRIVATE ${FEQ_LOCAL_CALLS})
 endfunction()

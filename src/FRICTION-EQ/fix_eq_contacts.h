@@ -49,6 +49,7 @@ FixStyle(eq/contacts,FixEQContacts);
 namespace feq {
 class ContactModel;
 struct AvalancheField;
+struct ThermalStepResult;
 }
 
 namespace LAMMPS_NS {
@@ -173,6 +174,11 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void store_sums(double fsum, double esum, double ssum, double natt, double ncount);
   template <bool ORTHOGONAL, bool THERMAL, bool ALL>
   long scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt);
+  bool step_attached(double *st, int i, const EQUtil::Unwrap &unwrap, double xu, double d,
+                     double dt, long &nb);
+  bool took_step(double *st, const feq::ThermalStepResult &r, const EQUtil::Unwrap &unwrap,
+                 double xu);
+  static bool absent_zeroed(double *st);
   bool settle_thermal(int i, const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt, long &nb);
   bool settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, double xu, bool allow_breaks,
                            double dt, long &nb);

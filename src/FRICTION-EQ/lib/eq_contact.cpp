@@ -257,21 +257,69 @@ double ContactModel::break_once(double *st, uint64_t tag, double e, double h, do
    re-formation happens at the end of the step.
 ------------------------------------------------------------------------- */
 
-void ContactModel::check_finite(const double *st, uint64_t tag, double m, bool waiting) const
+void ContactModel::not_finite(const double *st, uint64_t tag, double m, bool waiting) const
 {
-  if (std::isfinite(m)) return;
   throw BreakError((waiting ? "motion of the atom of waiting contact " : "stretch of contact ") +
                    std::to_string(tag) + " is " + num(m) + " (threshold " +
                    num(st[CS_THRESHOLD]) +
                    "; numerical instability: check the timestep, the forces and the integrator)");
 }
 
+// a piece in which the stretch goes linearly from s_a to s_b and the age
+// from a_a to a_a + h: true where |s| reaches the aged threshold within it
+// (g: the fraction where; |s| taken linear), else false with xs_end the
+// threshold at the end (0 where the lower bound CT_XS_LOW decides)
+inline bool ContactModel::threshold_crossing(const double *st, double s_a, double s_b, double a_a,
+                                      double h, double &g, double &xs_end) const
+{
+  if (std::fabs(s_b) < st[CT_XS_LOW]) return false;
+  const double xs0 = st[CS_THRESHOLD];
+  const double xs_b = xs0 * thermal.factor(a_a + h);
+  const double d_b = std::fabs(s_b) - xs_b;
+  if (d_b < 0.0) {
+    xs_end = xs_b;
+    return false;
+  }
+  const double d_a = std::fabs(s_a) - xs0 * thermal.factor(a_a);
+  g = d_a < 0.0 ? d_a / (d_a - d_b) : 0.0;
+  return true;
+}
+
+// a thermal break of the piece within its first fraction g (up to the
+// crossing): thinning; true with g the fraction of the break
+inline bool ContactModel::thermal_break(double *st, uint64_t tag, double s_a, double s_b, double a_a,
+                                 double h, double &g) const
+{
+  if (!(thermal_T && h > 0.0 && g > 0.0)) return false;
+  const double x_g = g == 1.0 ? s_b : s_a + (s_b - s_a) * g;
+  double g_t = 1.0;
+  if (!thin(st, tag, s_a, x_g, a_a, h * g, g_t)) return false;
+  g *= g_t;
+  return true;
+}
+
 ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, double dt,
                                         long &nbreaks) const
 {
   ThermalStepResult res;
+  // an attached contact whose stretch stays below its threshold's lower
+  // bound: one piece, the whole step, tested for a thermal break alone
+  // (as the loop's first piece); g0: the fraction where it broke
+  double g0 = NAN;
+  if (dt > 0.0 && st[CS_THRESHOLD] > 0.0 && !(st[CT_WAIT] > 0.0) &&
+      std::fabs(m) < st[CT_XS_LOW]) {
+    double g = 1.0;
+    if (!thermal_break(st, tag, st[CS_STRETCH], m, st[CT_AGE], dt, g)) {
+      st[CT_AGE] += dt;
+      hold(st, m);
+      res.stretch = m;
+      res.attached = true;
+      return res;
+    }
+    g0 = g;
+  }
   const bool waiting0 = st[CT_WAIT] > 0.0;
-  check_finite(st, tag, m, waiting0);
+  if (!std::isfinite(m)) not_finite(st, tag, m, waiting0);
   // motion of the atom per unit fraction of the step, and the stretch at f
   const double motion = waiting0 ? m : m - st[CS_STRETCH];
   double s_a = waiting0 ? 0.0 : st[CS_STRETCH];
@@ -302,9 +350,15 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
     const double a_a = st[CT_AGE];
     double g = 1.0;         // fraction of the piece at which it breaks
     double xs_end = 0.0;    // > 0: the threshold at the end, not reached
-    bool broke = threshold_crossing(st, s_a, s_b, a_a, h, g, xs_end);
-    // a thermal break first, up to the crossing: thinning
-    if (thermal_break(st, tag, s_a, s_b, a_a, h, g)) broke = true;
+    bool broke = true;
+    if (!std::isnan(g0)) {    // (the first piece, tested above)
+      g = g0;
+      g0 = NAN;
+    } else {
+      broke = threshold_crossing(st, s_a, s_b, a_a, h, g, xs_end);
+      // a thermal break first, up to the crossing: thinning
+      if (thermal_break(st, tag, s_a, s_b, a_a, h, g)) broke = true;
+    }
     if (!broke) {
       st[CT_AGE] = a_a + h;    // (a_a + dt for a whole step, as step())
       hold(st, s_b);
@@ -370,44 +424,11 @@ double ContactModel::rejoin(double *st, double m, double dt) const
   return s;
 }
 
-// a piece in which the stretch goes linearly from s_a to s_b and the age
-// from a_a to a_a + h: true where |s| reaches the aged threshold within it
-// (g: the fraction where; |s| taken linear), else false with xs_end the
-// threshold at the end (0 where the lower bound CT_XS_LOW decides)
-bool ContactModel::threshold_crossing(const double *st, double s_a, double s_b, double a_a,
-                                      double h, double &g, double &xs_end) const
-{
-  if (std::fabs(s_b) < st[CT_XS_LOW]) return false;
-  const double xs0 = st[CS_THRESHOLD];
-  const double xs_b = xs0 * thermal.factor(a_a + h);
-  const double d_b = std::fabs(s_b) - xs_b;
-  if (d_b < 0.0) {
-    xs_end = xs_b;
-    return false;
-  }
-  const double d_a = std::fabs(s_a) - xs0 * thermal.factor(a_a);
-  g = d_a < 0.0 ? d_a / (d_a - d_b) : 0.0;
-  return true;
-}
-
-// a thermal break of the piece within its first fraction g (up to the
-// crossing): thinning; true with g the fraction of the break
-bool ContactModel::thermal_break(double *st, uint64_t tag, double s_a, double s_b, double a_a,
-                                 double h, double &g) const
-{
-  if (!(thermal_T && h > 0.0 && g > 0.0)) return false;
-  const double x_g = g == 1.0 ? s_b : s_a + (s_b - s_a) * g;
-  double g_t = 1.0;
-  if (!thin(st, tag, s_a, x_g, a_a, h * g, g_t)) return false;
-  g *= g_t;
-  return true;
-}
-
 ContactModel::ThermalProbe ContactModel::probe(double *st, uint64_t tag, double e0, double e1,
                                                double dt) const
 {
   ThermalProbe res;
-  check_finite(st, tag, e1, false);
+  if (!std::isfinite(e1)) not_finite(st, tag, e1, false);
   const double a_a = st[CT_AGE];
   // up to where e crosses the aged threshold (the avalanche breaks it there)
   double g = 1.0, xs_end = 0.0;
@@ -455,10 +476,11 @@ void ContactModel::raise_xs_low(double *st, double xs) const
 // per life at q = 1); rate_bound() covers the prefactor's peak.
 double ContactModel::level(double x, double w, double xs) const
 {
-  const double psi = thermal.log_barrier_rate_at(x, xs);
+  double slope = 0.0;
+  const double psi = thermal.log_barrier_rate_at(x, xs, slope);
   const double d = thermal.log_omega() - psi;
   if (!(d > 0.5 * BOUND_LOG_STEP)) return HUGE_VAL;
-  const double r = bound_rise(BOUND_CANDIDATES * w * thermal.log_barrier_rate_slope(x, xs), psi, d);
+  const double r = bound_rise(BOUND_CANDIDATES * w * slope, psi, d);
   return d - r < 0.5 * BOUND_LOG_STEP ? HUGE_VAL : psi + r;
 }
 

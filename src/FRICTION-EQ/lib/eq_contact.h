@@ -386,7 +386,8 @@ class ContactModel {
                      double &g) const;
   // the draws of candidate k of the current life: acceptance uniform, next budget
   void candidate_draw(uint64_t tag, uint64_t life, double k, double &accept, double &next) const;
-  void check_finite(const double *st, uint64_t tag, double m, bool waiting) const;
+  // a stretch m (of a waiting contact: its atom's motion) that is not finite
+  [[noreturn]] void not_finite(const double *st, uint64_t tag, double m, bool waiting) const;
 
   double draw_reform(uint64_t tag, uint64_t event, uint32_t stream) const;
   // the threshold above |r| of the life after event `event` (stream

@@ -208,17 +208,14 @@ class ThermalModel {
 
   // ln omega - c u^(3/2): ln nu without the prefactor u^q <= 1 (an upper
   // bound of ln nu, increasing in |x|), +infinity at or beyond the
-  // threshold; and its slope in |x| (theta > 0, |x| < xs)
-  double log_barrier_rate_at(double x, double xs) const
+  // threshold (slope then unset); slope: its derivative in |x| (theta > 0)
+  double log_barrier_rate_at(double x, double xs, double &slope) const
   {
     const double u = 1.0 - std::fabs(x) / xs;
     if (!(u > 0.0)) return HUGE_VAL;
-    return ln_omega - barrier_scale(xs) * u * std::sqrt(u) * inv_theta;
-  }
-  double log_barrier_rate_slope(double x, double xs) const
-  {
-    const double u = 1.0 - std::fabs(x) / xs;
-    return 1.5 * barrier_scale(xs) * std::sqrt(u) * inv_theta / xs;
+    const double scale = barrier_scale(xs), root = std::sqrt(u);
+    slope = 1.5 * scale * root * inv_theta / xs;
+    return ln_omega - scale * u * root * inv_theta;
   }
 
   // the stretch |x| at which ln(omega) - c u^(3/2) (ln nu without the
