@@ -39,28 +39,36 @@ namespace feq {
 using Philox4x32 = std::array<uint32_t, 4>;
 
 // Philox4x32 with R rounds (R = 10 is the reference generator).
-inline Philox4x32 philox4x32(Philox4x32 ctr, std::array<uint32_t, 2> key, int rounds = 10)
+// one round of Philox4x32 with round key `key`
+inline void philox4x32_round(Philox4x32 &ctr, const std::array<uint32_t, 2> &key)
 {
   const uint64_t M0 = 0xD2511F53u, M1 = 0xCD9E8D57u;
+  const uint64_t p0 = M0 * ctr[0];
+  const uint64_t p1 = M1 * ctr[2];
+  const uint32_t hi0 = uint32_t(p0 >> 32), lo0 = uint32_t(p0);
+  const uint32_t hi1 = uint32_t(p1 >> 32), lo1 = uint32_t(p1);
+  ctr = {hi1 ^ ctr[1] ^ key[0], lo1, hi0 ^ ctr[3] ^ key[1], lo0};
+}
+
+// Philox4x32-10: ten rounds, the key bumped by the Weyl constants between
+// them (unrolled: a contact's break draws one block)
+inline Philox4x32 philox4x32(Philox4x32 ctr, std::array<uint32_t, 2> key)
+{
   const uint32_t W0 = 0x9E3779B9u, W1 = 0xBB67AE85u;
-  for (int r = 0; r < rounds; ++r) {
-    if (r > 0) {
-      key[0] += W0;
-      key[1] += W1;
-    }
-    const uint64_t p0 = M0 * ctr[0];
-    const uint64_t p1 = M1 * ctr[2];
-    const uint32_t hi0 = uint32_t(p0 >> 32), lo0 = uint32_t(p0);
-    const uint32_t hi1 = uint32_t(p1 >> 32), lo1 = uint32_t(p1);
-    ctr = {hi1 ^ ctr[1] ^ key[0], lo1, hi0 ^ ctr[3] ^ key[1], lo0};
+  philox4x32_round(ctr, key);
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC unroll 9
+#elif defined(__clang__)
+#pragma unroll 9
+#endif
+  for (int r = 1; r < 10; ++r) {
+    key[0] += W0;
+    key[1] += W1;
+    philox4x32_round(ctr, key);
   }
   return ctr;
 }
 
-// Streams: independent sequences of one contact.  A contact formed again
-// when its atom re-enters the group draws from the streams offset by
-// STREAM_REENTRY (keyed by its break count), so it does not repeat the
-// draws of its first formation.
 enum Stream : uint32_t {
   STREAM_THRESHOLD = 0,
   STREAM_REFORM = 1,
