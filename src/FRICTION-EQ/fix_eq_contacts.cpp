@@ -694,6 +694,46 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
   return nb;
 }
 
+// settle_thermal() of an attached contact in a step of dt > 0 (d: its
+// atom's unwrapped coordinate xu less its anchor), without its checks for
+// formation and a new run.  Within the unwrap's reach the stretch is d and
+// scan_thermal() found quick_step() false: advance() at once
+inline bool FixEQContacts::step_attached(double *st, int i, const EQUtil::Unwrap &unwrap, double xu,
+                                  double d, double dt, long &nb)
+{
+  const uint64_t id = static_cast<uint64_t>(atom->tag[i]);
+  const ThermalStepResult r = std::fabs(d) < unwrap.stretch_reach()
+      ? model->advance(st, id, d, dt, nb)
+      : model->step(st, id, unwrap.stretch(d), dt, nb);
+  return took_step(st, r, unwrap, xu);
+}
+
+// the end of a step taken by ContactModel::step() or advance(): a new
+// anchor where the contact broke or re-formed; false when it is absent
+// (waiting, detached for good) with stretch and force 0
+inline bool FixEQContacts::took_step(double *st, const ThermalStepResult &r,
+                              const EQUtil::Unwrap &unwrap, double xu)
+{
+  if (r.attached && r.renewed) {
+    st[CS_ANCHOR] = xu - r.stretch;
+    model->hold(st, unwrap.stretch(xu - st[CS_ANCHOR]));
+  } else if (!r.attached && st[CS_THRESHOLD] > 0.0) {
+    st[CS_ANCHOR] = xu;
+  }
+  return absent_zeroed(st);
+}
+
+// false, with stretch and force 0, for a contact absent (not formed,
+// detached for good, waiting); true otherwise
+inline bool FixEQContacts::absent_zeroed(double *st)
+{
+  if (!(st[CS_THRESHOLD] > 0.0) || st[CT_WAIT] > 0.0) {
+    st[CS_STRETCH] = st[CS_FORCE] = 0.0;
+    return false;
+  }
+  return true;
+}
+
 // scan_thermal()'s contacts off the common step (xu: the atom's unwrapped
 // coordinate): a formed contact taking a step (a waiting one whose delay
 // goes on: its anchor follows its atom; an attached one: step_attached()),
@@ -712,46 +752,6 @@ bool FixEQContacts::settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, dou
     }
   }
   return settle_thermal(i, unwrap, allow_breaks, dt, nb);
-}
-
-// settle_thermal() of an attached contact in a step of dt > 0 (d: its
-// atom's unwrapped coordinate xu less its anchor), without its checks for
-// formation and a new run.  Within the unwrap's reach the stretch is d and
-// scan_thermal() found quick_step() false: advance() at once
-bool FixEQContacts::step_attached(double *st, int i, const EQUtil::Unwrap &unwrap, double xu,
-                                  double d, double dt, long &nb)
-{
-  const uint64_t id = static_cast<uint64_t>(atom->tag[i]);
-  const ThermalStepResult r = std::fabs(d) < unwrap.stretch_reach()
-      ? model->advance(st, id, d, dt, nb)
-      : model->step(st, id, unwrap.stretch(d), dt, nb);
-  return took_step(st, r, unwrap, xu);
-}
-
-// the end of a step taken by ContactModel::step() or advance(): a new
-// anchor where the contact broke or re-formed; false when it is absent
-// (waiting, detached for good) with stretch and force 0
-bool FixEQContacts::took_step(double *st, const ThermalStepResult &r,
-                              const EQUtil::Unwrap &unwrap, double xu)
-{
-  if (r.attached && r.renewed) {
-    st[CS_ANCHOR] = xu - r.stretch;
-    model->hold(st, unwrap.stretch(xu - st[CS_ANCHOR]));
-  } else if (!r.attached && st[CS_THRESHOLD] > 0.0) {
-    st[CS_ANCHOR] = xu;
-  }
-  return absent_zeroed(st);
-}
-
-// false, with stretch and force 0, for a contact absent (not formed,
-// detached for good, waiting); true otherwise
-bool FixEQContacts::absent_zeroed(double *st)
-{
-  if (!(st[CS_THRESHOLD] > 0.0) || st[CT_WAIT] > 0.0) {
-    st[CS_STRETCH] = st[CS_FORCE] = 0.0;
-    return false;
-  }
-  return true;
 }
 
 // a contact off the common step: formed, its step taken (or held), its
