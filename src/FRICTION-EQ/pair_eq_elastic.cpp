@@ -675,6 +675,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   first.assign(2 * static_cast<size_t>(nlocal), 0);
+  rowlocal.assign(nlocal, 1);
   pj.clear();
   pk.clear();
   for (int i = 0; i < nlocal; i++) {
@@ -717,6 +718,7 @@ void PairEQElastic::rebuild(bool fresh_ghosts)
       const double k = factor * kval(itype, jtype, rsq, del);
       pj.push_back(j);
       pk.push_back(k);
+      if (j >= nlocal) rowlocal[i] = 0;
       if (!coupled_i || !coupled_j) continue;    // a pair cached for a change of members
       const double dq = qi - qj;
       if (site_distance && k != 0.0 && std::fabs(dq) > dubig) {
@@ -1017,13 +1019,22 @@ void PairEQElastic::scatter(const EQChangeSet &set)
     if (site_distance) w[i] -= dq;    // contacts: w of local atoms is not read
     hv[i] += ksum[i] * dq;
     hc[nc++] = i;
-    for (int p = fr[2 * i]; p < fr[2 * i + 1]; p++) {
-      const int j = jv[p];
-      if (j < nlocal) {
+    const int pend = fr[2 * i + 1];
+    if (rowlocal[i]) {
+      for (int p = fr[2 * i]; p < pend; p++) {
+        const int j = jv[p];
         hv[j] -= kv[p] * dq;
         hc[nc++] = j;
-      } else
-        ghost_share(j, -kv[p] * dq);
+      }
+    } else {
+      for (int p = fr[2 * i]; p < pend; p++) {
+        const int j = jv[p];
+        if (j < nlocal) {
+          hv[j] -= kv[p] * dq;
+          hc[nc++] = j;
+        } else
+          ghost_share(j, -kv[p] * dq);
+      }
     }
     if (vir_current) vir_pending.emplace_back(i, dq);
     sync_mark(i);
@@ -1549,6 +1560,7 @@ double PairEQElastic::memory_usage()
   double bytes = Pair::memory_usage();
   bytes += 10.0 * nmax * sizeof(double);
   bytes += static_cast<double>(pj.capacity()) * sizeof(int) + pk.capacity() * sizeof(double);
+  bytes += static_cast<double>(rowlocal.capacity());
   bytes += static_cast<double>(first.capacity()) * sizeof(int);
   return bytes;
 }

@@ -154,6 +154,9 @@ class PairEQElastic : public Pair, public EQElasticField {
   // skip the uncoupled.  Blocks (member_bit 0): the coupled atoms only
   std::vector<int> first, pj;
   std::vector<double> pk;
+  // 1 where every partner of row i is a local atom (the scatter's loop
+  // without the test for ghosts); written with the lists
+  std::vector<char> rowlocal;
   int member_bit;
   // the coupled ghosts in the lists of local coupled atoms (the only ghosts
   // whose q is kept current between list builds; the others: x - w)
