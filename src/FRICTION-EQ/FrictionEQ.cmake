@@ -9,7 +9,7 @@
 #       no external dependency; position-independent (liblammps, plugins)
 #   FEQ_STYLE_SOURCES
 #       the LAMMPS styles of the package (src/FRICTION-EQ/*.cpp)
-#   FEQ_LOCAL_CALLS
+#   FEQ_COMPILE_OPTIONS
 #       compile options for the package's sources (see below)
 #
 # The surface Green tensor solver (lib/eq_green.*, FFTW3 + Eigen3) is not
@@ -61,16 +61,24 @@ function(feq_check_lammps lammps_dir number text packages)
   endif()
 endfunction()
 
-# FEQ_LOCAL_CALLS: position-independent code calls the functions of its
-# own library through the PLT, so that another library could interpose
-# them, and never inlines them; the package's calls among its own
-# functions (a contact's step, its bounds and draws; a style's helpers)
-# are direct and may be inlined (the same numbers: no other change of code)
+# FEQ_COMPILE_OPTIONS: compile options for the package's sources.
+# -fno-semantic-interposition: position-independent code calls the
+# functions of its own library through the PLT, so that another library
+# could interpose them, and never inlines them; the package's calls among
+# its own functions (a contact's step, its bounds and draws; a style's
+# helpers) are direct and may be inlined.  -ffp-contract=off: no fused
+# multiply-add where the source has a product and a sum (GCC fuses them
+# in its GNU modes on targets with FMA, e.g. aarch64, more so where code
+# is inlined): the same numbers on every target and build
 include(CheckCXXCompilerFlag)
 check_cxx_compiler_flag(-fno-semantic-interposition FEQ_HAS_NO_INTERPOSITION)
-set(FEQ_LOCAL_CALLS "")
+check_cxx_compiler_flag(-ffp-contract=off FEQ_HAS_FP_CONTRACT_OFF)
+set(FEQ_COMPILE_OPTIONS "")
 if(FEQ_HAS_NO_INTERPOSITION)
-  set(FEQ_LOCAL_CALLS -fno-semantic-interposition)
+  list(APPEND FEQ_COMPILE_OPTIONS -fno-semantic-interposition)
+endif()
+if(FEQ_HAS_FP_CONTRACT_OFF)
+  list(APPEND FEQ_COMPILE_OPTIONS -ffp-contract=off)
 endif()
 
 function(feq_add_core)
@@ -83,5 +91,5 @@ function(feq_add_core)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     target_compile_options(feq_core PRIVATE -Wall -Wextra)
   endif()
-  target_compile_options(feq_core PRIVATE ${FEQ_LOCAL_CALLS})
+  target_compile_options(feq_core PRIVATE ${FEQ_COMPILE_OPTIONS})
 endfunction()

@@ -696,8 +696,9 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
 
 // settle_thermal() of an attached contact in a step of dt > 0 (d: its
 // atom's unwrapped coordinate xu less its anchor), without its checks for
-// formation and a new run.  Within the unwrap's reach the stretch is d and
-// scan_thermal() found quick_step() false: advance() at once
+// formation and a new run.  Within the unwrap's reach the stretch is d,
+// and scan_thermal()'s inline test found quick_attached() false for it
+// (which then changes nothing): step() would call advance() at once
 inline bool FixEQContacts::step_attached(double *st, int i, const EQUtil::Unwrap &unwrap, double xu,
                                   double d, double dt, long &nb)
 {
@@ -735,9 +736,9 @@ inline bool FixEQContacts::absent_zeroed(double *st)
 }
 
 // scan_thermal()'s contacts off the common step (xu: the atom's unwrapped
-// coordinate): a formed contact taking a step (a waiting one whose delay
-// goes on: its anchor follows its atom; an attached one: step_attached()),
-// or settle_thermal()
+// coordinate), called only after its inline test failed: a formed
+// contact taking a step (a waiting one whose delay goes on: its anchor
+// follows its atom; an attached one: step_attached()), or settle_thermal()
 bool FixEQContacts::settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, double xu,
                                         bool allow_breaks, double dt, long &nb)
 {

@@ -304,8 +304,9 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
   ThermalStepResult res;
   // an attached contact whose stretch stays below its threshold's lower
   // bound: one piece, the whole step, tested for a thermal break alone
-  // (as the loop's first piece); g0: the fraction where it broke
-  double g0 = NAN;
+  // (as the loop's first piece); tested: it broke, at the fraction g0
+  bool tested = false;
+  double g0 = 1.0;
   if (dt > 0.0 && st[CS_THRESHOLD] > 0.0 && !(st[CT_WAIT] > 0.0) &&
       std::fabs(m) < st[CT_XS_LOW]) {
     double g = 1.0;
@@ -316,6 +317,7 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
       res.attached = true;
       return res;
     }
+    tested = true;
     g0 = g;
   }
   const bool waiting0 = st[CT_WAIT] > 0.0;
@@ -351,9 +353,9 @@ ThermalStepResult ContactModel::advance(double *st, uint64_t tag, double m, doub
     double g = 1.0;         // fraction of the piece at which it breaks
     double xs_end = 0.0;    // > 0: the threshold at the end, not reached
     bool broke = true;
-    if (!std::isnan(g0)) {    // (the first piece, tested above)
+    if (tested) {    // (the first piece, tested above)
       g = g0;
-      g0 = NAN;
+      tested = false;
     } else {
       broke = threshold_crossing(st, s_a, s_b, a_a, h, g, xs_end);
       // a thermal break first, up to the crossing: thinning

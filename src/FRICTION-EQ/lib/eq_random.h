@@ -38,7 +38,6 @@ namespace feq {
 
 using Philox4x32 = std::array<uint32_t, 4>;
 
-// Philox4x32 with R rounds (R = 10 is the reference generator).
 // one round of Philox4x32 with round key `key`
 inline void philox4x32_round(Philox4x32 &ctr, const std::array<uint32_t, 2> &key)
 {
@@ -69,6 +68,10 @@ inline Philox4x32 philox4x32(Philox4x32 ctr, std::array<uint32_t, 2> key)
   return ctr;
 }
 
+// Streams: independent sequences of one contact.  A contact formed again
+// when its atom re-enters the group draws from the streams offset by
+// STREAM_REENTRY (keyed by its break count), so it does not repeat the
+// draws of its first formation.
 enum Stream : uint32_t {
   STREAM_THRESHOLD = 0,
   STREAM_REFORM = 1,
