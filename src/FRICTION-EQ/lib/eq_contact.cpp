@@ -269,8 +269,9 @@ void ContactModel::not_finite(const double *st, uint64_t tag, double m, bool wai
 // from a_a to a_a + h: true where |s| reaches the aged threshold within it
 // (g: the fraction where; |s| taken linear), else false with xs_end the
 // threshold at the end (0 where the lower bound CT_XS_LOW decides)
-inline bool ContactModel::threshold_crossing(const double *st, double s_a, double s_b, double a_a,
-                                      double h, double &g, double &xs_end) const
+inline bool ContactModel::threshold_crossing(const double *st, double s_a, double s_b,
+                                             double a_a, double h, double &g,
+                                             double &xs_end) const
 {
   if (std::fabs(s_b) < st[CT_XS_LOW]) return false;
   const double xs0 = st[CS_THRESHOLD];
@@ -287,8 +288,8 @@ inline bool ContactModel::threshold_crossing(const double *st, double s_a, doubl
 
 // a thermal break of the piece within its first fraction g (up to the
 // crossing): thinning; true with g the fraction of the break
-inline bool ContactModel::thermal_break(double *st, uint64_t tag, double s_a, double s_b, double a_a,
-                                 double h, double &g) const
+inline bool ContactModel::thermal_break(double *st, uint64_t tag, double s_a, double s_b,
+                                        double a_a, double h, double &g) const
 {
   if (!(thermal_T && h > 0.0 && g > 0.0)) return false;
   const double x_g = g == 1.0 ? s_b : s_a + (s_b - s_a) * g;
