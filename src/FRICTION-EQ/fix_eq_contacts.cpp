@@ -699,8 +699,8 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
 // formation and a new run.  Within the unwrap's reach the stretch is d,
 // and scan_thermal()'s inline test found quick_attached() false for it
 // (which then changes nothing): step() would call advance() at once
-inline bool FixEQContacts::step_attached(double *st, int i, const EQUtil::Unwrap &unwrap, double xu,
-                                  double d, double dt, long &nb)
+inline bool FixEQContacts::step_attached(double *st, int i, const EQUtil::Unwrap &unwrap,
+                                         double xu, double d, double dt, long &nb)
 {
   const uint64_t id = static_cast<uint64_t>(atom->tag[i]);
   const ThermalStepResult r = std::fabs(d) < unwrap.stretch_reach()
@@ -713,7 +713,7 @@ inline bool FixEQContacts::step_attached(double *st, int i, const EQUtil::Unwrap
 // anchor where the contact broke or re-formed; false when it is absent
 // (waiting, detached for good) with stretch and force 0
 inline bool FixEQContacts::took_step(double *st, const ThermalStepResult &r,
-                              const EQUtil::Unwrap &unwrap, double xu)
+                                     const EQUtil::Unwrap &unwrap, double xu)
 {
   if (r.attached && r.renewed) {
     st[CS_ANCHOR] = xu - r.stretch;
