@@ -13,9 +13,14 @@ its caller (frame #2) is one of LAMMPS' functions listed with it.  Any
 other report (a direct leak elsewhere, any AddressSanitizer error, any
 UBSan finding) is a finding.  One exception, said in the output: the
 last block of a report cut off before its first frame (a process that
-MPI_Abort killed while LeakSanitizer was writing, when the other rank
+mpirun killed while LeakSanitizer was writing, when the other rank
 stopped with an error) is 'truncated', and the report is LAMMPS' own
-when all its complete direct leaks are.
+when all its complete direct leaks are.  A report cut off before any
+complete direct leak (its header alone, or its first block without a
+frame) tells nothing: it is 'cut', printed, not a finding.  (Every input
+of the misuse and fuzz runners, where mpirun kills ranks at once, also
+runs on one rank, whose report is whole; a rank killed for a timeout
+fails its test.)
 
     lsan_filter.py REPORT...     prints a line per report; exit 1 on a finding
 """
@@ -83,7 +88,8 @@ def known_site(block):
 
 
 def classify(text):
-    """(kind, detail): kind 'lammps' (only known direct leaks) or 'finding'."""
+    """(kind, detail): kind 'lammps' (only known direct leaks), 'cut' (no complete direct
+    leak: cut off) or 'finding'."""
     if re.search(r"ERROR: AddressSanitizer|runtime error: ", text):
         return "finding", "AddressSanitizer/UBSan error"
     if "ERROR: LeakSanitizer" not in text:
@@ -94,7 +100,7 @@ def classify(text):
         block = text[a:b]
         if not block.startswith("Direct"):
             continue
-        if b == len(text) and n > 0 and not FRAME_RE.search(block) and "SUMMARY:" not in block:
+        if b == len(text) and not FRAME_RE.search(block) and "SUMMARY:" not in block:
             truncated = True
             continue
         site = known_site(block)
@@ -102,6 +108,8 @@ def classify(text):
             m = FRAME1_RE.search(block)
             return "finding", f"direct leak allocated in {m.group(1) if m else '?'}"
         known.add(site)
+    if not known and (truncated or (len(starts) == 1 and "SUMMARY:" not in text)):
+        return "cut", "report cut off before its first complete leak (a process killed while writing it)"
     if not known:
         return "finding", "leak report without a direct leak"
     return "lammps", ", ".join(sorted(known)) + (" (report cut off at its end)" if truncated else "")
@@ -113,7 +121,7 @@ def main(paths):
         with open(p, errors="replace") as fh:
             kind, detail = classify(fh.read())
         findings += kind == "finding"
-        print(f"{'FINDING' if kind == 'finding' else 'LAMMPS '} {p}: {detail}")
+        print(f"{ {'finding': 'FINDING', 'cut': 'CUT    '}.get(kind, 'LAMMPS ')} {p}: {detail}")
     return 1 if findings else 0
 
 

@@ -62,10 +62,25 @@ def test_report_cut_off_at_its_end():
     text = HEAD + leak("Direct", "command_creator<LAMMPS_NS::Run>") + cut
     kind, detail = L.classify(text)
     assert kind == "lammps" and "cut off" in detail
-    # a cut block alone, or after a package leak, does not pass
-    assert L.classify(HEAD + cut)[0] == "finding"
+    # a cut block after a package leak does not pass
     text = HEAD + leak("Direct", "LAMMPS_NS::FixEQMeso::FixEQMeso(LAMMPS_NS::LAMMPS*, int, char**)") + cut
     assert L.classify(text)[0] == "finding"
     # a block cut in the middle of the report is not the end of a report
     text = HEAD + cut + leak("Direct", "command_creator<LAMMPS_NS::Run>")
+    assert L.classify(text)[0] == "finding"
+
+
+def test_report_cut_off_before_its_first_leak():
+    # the header alone, or a first block cut before its first frame: 'cut',
+    # not LAMMPS' own and not a finding
+    cut = "Direct leak of 192 byte(s) in 1 object(s) allocated from:\n"
+    for text in (HEAD, HEAD + cut, HEAD + leak("Indirect", "LAMMPS_NS::Atom::Atom") + cut):
+        kind, detail = L.classify(text)
+        assert kind == "cut" and "cut off" in detail, text
+    # a whole report (its SUMMARY line) without a direct leak is a finding
+    summary = "SUMMARY: AddressSanitizer: 32 byte(s) leaked in 1 allocation(s).\n"
+    assert L.classify(HEAD + summary)[0] == "finding"
+    assert L.classify(HEAD + leak("Indirect", "LAMMPS_NS::Atom::Atom") + summary)[0] == "finding"
+    # a complete package leak before a cut block is a finding
+    text = HEAD + leak("Direct", "LAMMPS_NS::FixEQContacts::init()") + cut
     assert L.classify(text)[0] == "finding"
