@@ -10,9 +10,11 @@
    list; eq/elastic: a full list).
    The cost per break: a run at ten times the velocity (ten times the
    breaks per step) minus a run of the same motion whose contacts cannot
-   break (same list builds and field updates), in the fix's timer section
-   (Modify: the field updates and the avalanches; each run's minimum over
-   the repeats), divided by its breaks, and
+   break (same list builds and field updates), in LAMMPS' timer sections
+   Modify and Pair (averages over the ranks: the field updates, the
+   avalanches and, after a step with breaks, the pair's update of the
+   ghosts' fields; each run's minimum over the repeats), divided by its
+   breaks, and
    by its avalanche rounds (cost per round, the breaks of a round
    included).  Beside it, the update of the partners' fields alone as a
    plain loop (hand_scatter.cpp, the same lattice and pair layout, breaks
@@ -94,12 +96,13 @@ def parse_runs(log):
 
 
 def break_cost(runs):
-    """ns per break and us per round: the fix's section (Modify: the field updates and the
-    avalanches, where all the work of a break is done) of the breaks run less that of the
-    held run, each the minimum over the runs (the other sections do the same work in both
-    runs and only add their noise)"""
+    """ns per break and us per round: the Modify and Pair sections (the fixes' pre_force with
+    the field updates and the avalanches; the forces, and the pair's update of the ghosts'
+    fields after a step with breaks) of the breaks run less those of the held run, each the
+    minimum over the runs (Neigh, Comm and Output do the same work in both runs and would
+    only add their noise).  The breaks and rounds are the same in every run (same seeds)."""
     def best(name):
-        return min(res[name]["t"]["Modify"] for res in runs)
+        return min(res[name]["t"]["Modify"] + res[name]["t"]["Pair"] for res in runs)
     hi = runs[0]["eq/elastic-breaks"]
     extra = best("eq/elastic-breaks") - best("eq/elastic-held")
     nround = hi["rounds"] * hi["steps"]
@@ -110,9 +113,9 @@ def pair_table(sizes, ranks, work, out, repeat):
     print("pair eq/elastic vs lj/cut, rcut = 3 (36 lattice neighbours), steady sliding of a rigid "
           "slider, dX = 0.001 per step; ns per contact-step (run minus the run without pair style); "
           f"minimum of {repeat} runs.\nPer break and per round: the run at dX = 0.01 minus the same "
-          "motion with unbreakable contacts, in LAMMPS' Modify section (each the minimum of the "
-          "runs); hand: the partner update alone (hand_scatter.cpp, one rank's share, divided by "
-          "the ranks: wall time per break)")
+          "motion with unbreakable contacts, in LAMMPS' Modify and Pair sections (each the minimum "
+          "of the runs); hand: the partner update alone (hand_scatter.cpp, one rank's share, "
+          "divided by the ranks: wall time per break)")
     print(f"{'N':>8} {'ranks':>5} {'steps':>5} {'no pair':>8} {'lj/cut':>7} {'eq/elastic':>10} "
           f"{'ratio':>6} {'breaks/step':>11} {'x10: breaks/step':>16} {'rounds/step':>11} "
           f"{'ns/break':>8} {'us/round':>8} {'hand ns/break':>13} {'break/hand':>10} "

@@ -16,11 +16,12 @@ last block of a report cut off before its first frame (a process that
 mpirun killed while LeakSanitizer was writing, when the other rank
 stopped with an error) is 'truncated', and the report is LAMMPS' own
 when all its complete direct leaks are.  A report cut off before any
-complete direct leak (its header alone, or its first block without a
-frame) tells nothing: it is 'cut', printed, not a finding.  (Every input
-of the misuse and fuzz runners, where mpirun kills ranks at once, also
-runs on one rank, whose report is whole; a rank killed for a timeout
-fails its test.)
+leak (its header alone, or its first block without a frame) tells
+nothing: it is 'cut', printed, not a finding.  This assumes that the
+cut report's process was a rank that mpirun killed when another rank
+of the same run stopped with an error: every input of the misuse and
+fuzz runners, where mpirun kills ranks at once, also runs on one rank,
+whose report is whole, and a rank killed for a timeout fails its test.
 
     lsan_filter.py REPORT...     prints a line per report; exit 1 on a finding
 """
@@ -64,6 +65,7 @@ KNOWN_CALLERS = {
                                  "LAMMPS_NS::ReadRestart::command"),
 }
 
+LSAN_HEAD = "ERROR: LeakSanitizer: detected memory leaks"
 BLOCK_RE = re.compile(r"^(Direct|Indirect) leak of (\d+) byte", re.M)
 FRAME1_RE = re.compile(r"^\s*#1 0x[0-9a-f]+ in (.+?)(?: \S+:\d+(?::\d+)?)?$", re.M)
 FRAME2_RE = re.compile(r"^\s*#2 0x[0-9a-f]+ in (.+?)(?: \S+:\d+(?::\d+)?)?$", re.M)
@@ -92,23 +94,26 @@ def classify(text):
     leak: cut off) or 'finding'."""
     if re.search(r"ERROR: AddressSanitizer|runtime error: ", text):
         return "finding", "AddressSanitizer/UBSan error"
-    if "ERROR: LeakSanitizer" not in text:
+    if LSAN_HEAD not in text:
         return "finding", "unrecognised report"
     starts = [m.start() for m in BLOCK_RE.finditer(text)] + [len(text)]
-    known, truncated = set(), False
+    known, truncated, cut_first = set(), False, False
     for n, (a, b) in enumerate(zip(starts, starts[1:])):
         block = text[a:b]
         if not block.startswith("Direct"):
             continue
         if b == len(text) and not FRAME_RE.search(block) and "SUMMARY:" not in block:
-            truncated = True
+            truncated, cut_first = True, n == 0
             continue
         site = known_site(block)
         if site is None:
             m = FRAME1_RE.search(block)
             return "finding", f"direct leak allocated in {m.group(1) if m else '?'}"
         known.add(site)
-    if not known and (truncated or (len(starts) == 1 and "SUMMARY:" not in text)):
+    # cut off before its first block (LeakSanitizer writes the direct
+    # leaks first): nothing after the header, or one block without a frame
+    header_only = len(starts) == 1 and not text[text.index(LSAN_HEAD) + len(LSAN_HEAD):].strip()
+    if not known and (header_only or cut_first):
         return "cut", "report cut off before its first complete leak (a process killed while writing it)"
     if not known:
         return "finding", "leak report without a direct leak"
