@@ -488,11 +488,8 @@ def sum_h_checks(system, col):
     """Computes of sum h and sum |h| over the coupled atoms (sum h = 0:
     the interaction only redistributes force) and the thermo keywords."""
     src = system.source
-    # (sum |h| through an atom variable: compute reduce sumabs is newer
-    # than LAMMPS 29 Sep 2021)
     return (f"compute         hsum all reduce sum f_{src}[{col}]\n"
-            f"variable        habs_i atom abs(f_{src}[{col}])\n"
-            f"compute         habs all reduce sum v_habs_i\n")
+            f"compute         habs all reduce sumabs f_{src}[{col}]\n")
 
 
 def between(system, cmds, *, run2="run 20", post="", pad=False, thermo=None, pre=""):
