@@ -156,8 +156,8 @@ def check(name, got, want, tol=1e-9, scale=None):
     want| <= tol (1 + |scale|), scale = want by default (NaN fails)."""
     v = "chk_" + re.sub(r"\W+", "_", name).strip("_")
     scale = scale or f"v_{v}_w"
-    return (f"variable {v}_g equal {got}\n"
-            f"variable {v}_w equal {want}\n"
+    return (f"variable {v}_g equal \"{got}\"\n"
+            f"variable {v}_w equal \"{want}\"\n"
             f"if \"$(!(abs(v_{v}_g-v_{v}_w)<={tol}*(1+abs({scale}))))\" then &\n"
             f"  \"print 'CHECK FAILED {name} $(v_{v}_g:%.17g) $(v_{v}_w:%.17g)'\"\n")
 
@@ -484,12 +484,19 @@ PAIR_TWO = r"Pair style eq/elastic found \d+ fixes with coordinates"
 QS_LEAVES = r"Fix eq/quasistatic: group \S+ leaves \d+ contacts of fix \S+"
 
 
+# sum h and sum h^2 over the coupled atoms (sum h = 0: the interaction
+# only redistributes force; sum h^2 = 0: no field left).  sum |h| would be
+# the natural scale, but compute reduce sumabs is newer than LAMMPS 2021;
+# sqrt(N sum h^2) >= sum |h| (Cauchy-Schwarz) is the scale instead.
+H_THERMO = " c_hsum c_hsq"
+H_SCALE = "sqrt(count(all)*c_hsq)"
+
+
 def sum_h_checks(system, col):
-    """Computes of sum h and sum |h| over the coupled atoms (sum h = 0:
-    the interaction only redistributes force) and the thermo keywords."""
+    """The computes of sum h and sum h^2 (thermo keywords H_THERMO)."""
     src = system.source
     return (f"compute         hsum all reduce sum f_{src}[{col}]\n"
-            f"compute         habs all reduce sumabs f_{src}[{col}]\n")
+            f"compute         hsq all reduce sumsq f_{src}[{col}]\n")
 
 
 def between(system, cmds, *, run2="run 20", post="", pad=False, thermo=None, pre=""):
@@ -512,8 +519,8 @@ def gen_unfix_between(b):
         b.add(cls, f"{sn}.unfix-c-other-id",
               between(s, ["unfix c", f"fix c2 all eq/contacts {C_ARGS}"]),
               err(QS_NOID, r"\bc\b"))
-        t = "step pe f_c[7] f_q c_hsum c_habs"
-        post = (check("contacts", "f_c[7]", "80") + check("sum_h", "c_hsum", "0", scale="c_habs"))
+        t = "step pe f_c[7] f_q" + H_THERMO
+        post = (check("contacts", "f_c[7]", "80") + check("sum_h", "c_hsum", "0", scale=H_SCALE))
         b.add(cls, f"{sn}.redefine-c-same",
               between(s, ["unfix c", f"fix c all eq/contacts {C_ARGS}"], thermo=t, post=post,
                       pre=sum_h_checks(s, 7)), ok())
@@ -527,14 +534,14 @@ def gen_unfix_between(b):
               between(s, ["unfix q", "fix q all eq/quasistatic c max 0.05"], thermo=t,
                       post=post + check("q_advanced", "f_q > 0", "1"), pre=sum_h_checks(s, 7)), ok())
         b.add(cls, f"{sn}.unfix-q-run",
-              between(s, ["unfix q"], thermo="step pe f_c[7] c_hsum c_habs", post=post,
+              between(s, ["unfix q"], thermo="step pe f_c[7]" + H_THERMO, post=post,
                       pre=sum_h_checks(s, 7)), ok())
         b.add(cls, f"{sn}.pair-zero",
               between(s, ["pair_style zero 3.0", "pair_coeff * *"], thermo=t, pre=sum_h_checks(s, 7),
-                      post=check("h_gone", "c_habs", "0")), ok())
+                      post=check("h_gone", "c_hsq", "0")), ok())
         b.add(cls, f"{sn}.pair-none",
               between(s, ["pair_style none", "comm_modify cutoff 0.5"], thermo=t, pre=sum_h_checks(s, 7),
-                      post=check("h_gone", "c_habs", "0")), ok())
+                      post=check("h_gone", "c_hsq", "0")), ok())
         other = ("pair_style hybrid/overlay eq/elastic 3.0 check 1 zero 3.0\npair_coeff * * eq/elastic 0.06 3.0\n"
                  "pair_coeff * * zero") if pk == "elastic" else pc
         b.add(cls, f"{sn}.pair-swap", between(s, [other], thermo=t, pre=sum_h_checks(s, 7), post=post), ok())
@@ -573,8 +580,8 @@ def gen_unfix_between(b):
         ncount = f"f_{src}[10]" if s.style == "eq/substrate" else f"f_{src}[6]"
         line = s.line(src).split(None, 1)[1]
         pre = sum_h_checks(s, col) if col else ""
-        t = f"step pe {ncount}" + (" c_hsum c_habs" if col else "")
-        post = check("blocks", ncount, str(n)) + (check("sum_h", "c_hsum", "0", scale="c_habs") if col else "")
+        t = f"step pe {ncount}" + (H_THERMO if col else "")
+        post = check("blocks", ncount, str(n)) + (check("sum_h", "c_hsum", "0", scale=H_SCALE) if col else "")
         b.add(cls, f"{sn}.unfix-src", between(s, [f"unfix {src}"]), err(PAIR_NEEDS, r"eq/substrate|eq/meso"))
         b.add(cls, f"{sn}.redefine-src", between(s, [f"unfix {src}", f"fix {line}"], thermo=t, pre=pre,
                                                  post=post), ok())
@@ -583,7 +590,7 @@ def gen_unfix_between(b):
         b.add(cls, f"{sn}.unfix-integrator", between(s, ["unfix bd"], thermo=t, pre=pre, post=post), ok())
         b.add(cls, f"{sn}.pair-zero", between(s, ["pair_style zero 1.5", "pair_coeff * *"], thermo=t, pre=pre,
                                               post=check("blocks", ncount, str(n))
-                                              + (check("h_gone", "c_habs", "0") if col else "")), ok())
+                                              + (check("h_gone", "c_hsq", "0") if col else "")), ok())
         other = "eq/meso " + MP_ARGS if s.style == "eq/substrate" else "eq/substrate " + S_ARGS
         b.add(cls, f"{sn}.src-other-style", between(s, [f"unfix {src}", f"fix {src} all {other}"],
                                                     thermo="step pe"), ok())
@@ -1092,10 +1099,10 @@ def h_col(s):
 def box_case(s, cmds, during="", natoms="count(all)", second="run             20\n"):
     col = h_col(s)
     pre = sum_h_checks(s, col) if col else ""
-    thermo = f"step pe {count_expr(s)}" + (" c_hsum c_habs" if col else "")
+    thermo = f"step pe {count_expr(s)}" + (H_THERMO if col else "")
     post = check("count", count_expr(s), natoms)
     if col:
-        post += check("sum_h", "c_hsum", "0", scale="c_habs")
+        post += check("sum_h", "c_hsum", "0", scale=H_SCALE)
     return (s.text(thermo=thermo, computes=pre) + "run             20\n" + "".join(c + "\n" for c in cmds)
             + during + second + post)
 
@@ -1107,7 +1114,7 @@ def gen_box_atoms(b):
         sn = s.name
         site = s.style != "eq/contacts"
         computes = sum_h_checks(s, h_col(s)) if h_col(s) else ""
-        thermo = f"step pe {count_expr(s)}" + (" c_hsum c_habs" if h_col(s) else "")
+        thermo = f"step pe {count_expr(s)}" + (H_THERMO if h_col(s) else "")
         ops = [
             ("x-scale", ["change_box all x scale 1.1"], ok()),
             ("x-scale-remap", ["change_box all x scale 1.1 remap"], ok()),
@@ -1286,7 +1293,7 @@ def gen_overflow(b):
 # value is not available yet is also right.
 
 NOT_YET = (r"not (yet )?(available|current|computed|set up|initialized|tallied)|before (the first|a|any) run|"
-           r"before initialization|compatible time|run 0")
+           r"before initialization|compatible time|run 0|requires thermo to use/init")
 
 
 def before_case(setup, checks, run0=False):
@@ -1327,12 +1334,15 @@ def gen_before_run(b):
         b.add(cls, f"contacts.{aid}", before_case(s, [(aid, got, want)]), exp)
         if aid in ("count", "friction", "start-reform-F", "pair-start-reform-F"):
             b.add(cls, f"contacts.{aid}.run0", before_case(s, [(aid, got, want)], run0=True), ok())
-    # per-atom columns through compute reduce: after run 0, or an error before it
+    # per-atom columns through compute reduce: after run 0, or an error before it.
+    # c_r and c_xs are thermo keywords so that run 0 invokes them: LAMMPS before 2022
+    # refuses a compute in a variable between runs unless it is current.
     s = plain + f"fix c all eq/contacts {C_ARGS}\n" + drive
     for aid, comp, want in [("thresholds-min", "min f_c[2]", "0.75"), ("stretch-sum", "sum f_c[1]", "0"),
                             ("anchor-sum", "sum f_c[6]", "v_xsum"), ("stiffness-sum", "sum f_c[5]", str(n)),
                             ("field-sum", "sum f_c[7]", "0")]:
-        body = s + f"compute r all reduce {comp}\ncompute xs all reduce sum x\nvariable xsum equal c_xs\n"
+        body = (s + f"compute r all reduce {comp}\ncompute xs all reduce sum x\nvariable xsum equal c_xs\n"
+                "thermo_style custom step c_r c_xs\n")
         tol_want = want
         chk = [(aid, "c_r", tol_want)] if aid != "thresholds-min" else [(aid, "c_r >= 0.75", "1")]
         b.add(cls, f"contacts.reduce-{aid}", before_case(body, chk), exp)
