@@ -1070,7 +1070,10 @@ def gen_data_files(b):
         "duplicate-id": data_file(line, natoms=11, extra_atoms="3 1 5.5 0.5 0.0\n"),
         "type-out-of-range": data_file(line, natoms=11, extra_atoms="11 2 5.5 0.5 0.0\n"),
         "truncated": data_file(line)[:-40],
-        "binary": F.junk_bytes(500, 3),
+        # without quote bytes: LAMMPS before 2026 reads one byte past an
+        # unterminated quote in utils::split_words (read_data's header), and
+        # throws std::out_of_range now and then (seen on 4 Feb 2025)
+        "binary": bytes(c for c in F.junk_bytes(500, 3) if c not in b"'\""),
         "box-inverted": data_file(line, box=(10, 0, -2, 2)),
     }
     for aid, content in bad.items():
