@@ -153,7 +153,8 @@ def run_cases(cases, lmp, jobs=None, timeout=20.0, **kw):
 
 def check(name, got, want, tol=1e-9, scale=None):
     """Input lines that print 'CHECK FAILED name got want' unless |got -
-    want| <= tol (1 + |scale|), scale = want by default (NaN fails)."""
+    want| <= tol (1 + |scale|), scale = want by default (NaN fails).  got
+    and want are quoted formulas: no $ substitution in them."""
     v = "chk_" + re.sub(r"\W+", "_", name).strip("_")
     scale = scale or f"v_{v}_w"
     return (f"variable {v}_g equal \"{got}\"\n"
@@ -484,10 +485,11 @@ PAIR_TWO = r"Pair style eq/elastic found \d+ fixes with coordinates"
 QS_LEAVES = r"Fix eq/quasistatic: group \S+ leaves \d+ contacts of fix \S+"
 
 
-# sum h and sum h^2 over the coupled atoms (sum h = 0: the interaction
-# only redistributes force; sum h^2 = 0: no field left).  sum |h| would be
-# the natural scale, but compute reduce sumabs is newer than LAMMPS 2021;
-# sqrt(N sum h^2) >= sum |h| (Cauchy-Schwarz) is the scale instead.
+# sum h and sum h^2 over the atoms (sum h = 0: the interaction only
+# redistributes force).  sum |h| would be the natural scale of sum h and
+# the measure of a field left behind, but compute reduce sumabs is newer
+# than LAMMPS 2021; H_SCALE = sqrt(N sum h^2) >= sum |h| (Cauchy-Schwarz,
+# N = count(all)) stands in for it in both.
 H_THERMO = " c_hsum c_hsq"
 H_SCALE = "sqrt(count(all)*c_hsq)"
 
@@ -538,10 +540,10 @@ def gen_unfix_between(b):
                       pre=sum_h_checks(s, 7)), ok())
         b.add(cls, f"{sn}.pair-zero",
               between(s, ["pair_style zero 3.0", "pair_coeff * *"], thermo=t, pre=sum_h_checks(s, 7),
-                      post=check("h_gone", "c_hsq", "0")), ok())
+                      post=check("h_gone", H_SCALE, "0")), ok())
         b.add(cls, f"{sn}.pair-none",
               between(s, ["pair_style none", "comm_modify cutoff 0.5"], thermo=t, pre=sum_h_checks(s, 7),
-                      post=check("h_gone", "c_hsq", "0")), ok())
+                      post=check("h_gone", H_SCALE, "0")), ok())
         other = ("pair_style hybrid/overlay eq/elastic 3.0 check 1 zero 3.0\npair_coeff * * eq/elastic 0.06 3.0\n"
                  "pair_coeff * * zero") if pk == "elastic" else pc
         b.add(cls, f"{sn}.pair-swap", between(s, [other], thermo=t, pre=sum_h_checks(s, 7), post=post), ok())
@@ -590,7 +592,7 @@ def gen_unfix_between(b):
         b.add(cls, f"{sn}.unfix-integrator", between(s, ["unfix bd"], thermo=t, pre=pre, post=post), ok())
         b.add(cls, f"{sn}.pair-zero", between(s, ["pair_style zero 1.5", "pair_coeff * *"], thermo=t, pre=pre,
                                               post=check("blocks", ncount, str(n))
-                                              + (check("h_gone", "c_hsq", "0") if col else "")), ok())
+                                              + (check("h_gone", H_SCALE, "0") if col else "")), ok())
         other = "eq/meso " + MP_ARGS if s.style == "eq/substrate" else "eq/substrate " + S_ARGS
         b.add(cls, f"{sn}.src-other-style", between(s, [f"unfix {src}", f"fix {src} all {other}"],
                                                     thermo="step pe"), ok())
@@ -1338,16 +1340,16 @@ def gen_before_run(b):
         if aid in ("count", "friction", "start-reform-F", "pair-start-reform-F"):
             b.add(cls, f"contacts.{aid}.run0", before_case(s, [(aid, got, want)], run0=True), ok())
     # per-atom columns through compute reduce: after run 0, or an error before it.
-    # c_r and c_xs are thermo keywords so that run 0 invokes them: LAMMPS before 2022
-    # refuses a compute in a variable between runs unless it is current.
+    # c_r and c_xs are thermo keywords so that run 0 invokes them: LAMMPS 2021
+    # refuses a compute in a variable between runs unless it is current
+    # (2025 and later invoke an initialized compute on demand).
     s = plain + f"fix c all eq/contacts {C_ARGS}\n" + drive
     for aid, comp, want in [("thresholds-min", "min f_c[2]", "0.75"), ("stretch-sum", "sum f_c[1]", "0"),
                             ("anchor-sum", "sum f_c[6]", "v_xsum"), ("stiffness-sum", "sum f_c[5]", str(n)),
                             ("field-sum", "sum f_c[7]", "0")]:
         body = (s + f"compute r all reduce {comp}\ncompute xs all reduce sum x\nvariable xsum equal c_xs\n"
                 "thermo_style custom step c_r c_xs\n")
-        tol_want = want
-        chk = [(aid, "c_r", tol_want)] if aid != "thresholds-min" else [(aid, "c_r >= 0.75", "1")]
+        chk = [(aid, "c_r", want)] if aid != "thresholds-min" else [(aid, "c_r >= 0.75", "1")]
         b.add(cls, f"contacts.reduce-{aid}", before_case(body, chk), exp)
         b.add(cls, f"contacts.reduce-{aid}.run0", before_case(body, chk, run0=True), ok())
     # fix eq/substrate: K X0 and the spring forces at u = 0; u after displace_atoms
