@@ -1,0 +1,228 @@
+/* FRICTION-EQ benchmark reference (issue 23 item 7): where the time of
+   fix eq/contacts' common step at T > 0 goes, as plain loops in one
+   process.
+
+   The common step is the step of an attached contact that stays below
+   its threshold's lower bound, within its rate bound, and whose budget
+   is not used up (ContactModel::quick_attached()).  Each loop below does
+   that step for N contacts (no breaks): the unwrapped coordinate from x
+   and the image flags, the stretch, the tests, the stretch and the force
+   stored, the force into f, the four sums.  The layouts:
+
+     T = 0        the athermal row, CS_NCOL = 7 doubles (scan()'s work)
+     thermal      the thermal row as fix eq/contacts keeps it today, CT_NCOL
+                  = 15 doubles; the budget and the age written every step
+     read-only    the same row, the budget and age not written: the test
+                  is t < a run-out time (the budget as the time at which it
+                  runs out, the age as a formation time)
+     hot 9        only what the step touches, 9 doubles (S F K A, the lower
+                  bound, the bound's stretch and rate, budget, age)
+     hot 7 r/o    the same without the writes: 7 doubles (S F K A, the
+                  lower bound, the bound's stretch, the run-out time)
+
+   The loops run in turn, each pass about a millisecond or less, many
+   times over; each prints the minimum over its passes (the machine's
+   slow spells fall on all of them alike) per contact-step, and its ratio
+   to T = 0.
+
+   g++ -O2 -std=c++17 -fno-semantic-interposition -ffp-contract=off \
+       -I../../src/FRICTION-EQ/lib hand_thermal_layout.cpp -o hand_thermal_layout
+   ./hand_thermal_layout N [passes]                                          */
+
+#include "eq_contact.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+namespace {
+
+using namespace feq;
+using Clock = std::chrono::steady_clock;
+
+constexpr int IMGMAX = 512, IMGMASK = 1023, IMGBITS = 10;
+
+struct Scene {
+  int n;
+  std::vector<double> x, f;
+  std::vector<int> image;
+  double prd = 100.0, reach = HUGE_VAL;
+  double unwrap(int i) const
+  {
+    return x[3 * i] + (int((image[i] >> IMGBITS) & IMGMASK) - IMGMAX) * prd;
+  }
+};
+
+struct Sums {
+  double f = 0.0, e = 0.0, s = 0.0, n = 0.0;
+  void add(double *fd, double fc, double s_)
+  {
+    *fd -= fc;
+    f += fc;
+    e += fc * s_;
+    s += s_;
+    n += 1.0;
+  }
+  double total() const { return f + e + s + n; }
+};
+
+// the hot rows' columns
+enum Hot9 { H_S, H_F, H_K, H_A, H_XSLOW, H_BOUND_S, H_RATE, H_BUDGET, H_AGE, H9 };
+enum Hot7 { R_S, R_F, R_K, R_A, R_XSLOW, R_BOUND_S, R_RUNOUT, H7 };
+
+[[noreturn]] void off_path()
+{
+  std::fprintf(stderr, "a contact left the common step\n");
+  std::abort();
+}
+
+__attribute__((noinline)) double athermal(Scene &c, double *rows)
+{
+  Sums sum;
+  for (int i = 0; i < c.n; i++) {
+    double *st = rows + i * std::size_t(CS_NCOL);
+    const double s = c.unwrap(i) - st[CS_ANCHOR];
+    if (!(std::fabs(s) < std::min(st[CS_THRESHOLD], c.reach))) off_path();
+    st[CS_STRETCH] = s;
+    const double fc = st[CS_STIFFNESS] * s;
+    st[CS_FORCE] = fc;
+    sum.add(&c.f[3 * i], fc, s);
+  }
+  return sum.total();
+}
+
+__attribute__((noinline)) double thermal(Scene &c, double *rows, double dt)
+{
+  Sums sum;
+  for (int i = 0; i < c.n; i++) {
+    double *st = rows + i * std::size_t(CT_NCOL);
+    const double s = c.unwrap(i) - st[CS_ANCHOR], a = std::fabs(s);
+    const double dH = st[CT_BOUND_RATE] * dt;
+    if (!(a < c.reach && a < st[CT_XS_LOW] && a <= st[CT_BOUND_S] && dH < st[CT_BUDGET])) off_path();
+    st[CT_BUDGET] -= dH;
+    st[CT_AGE] += dt;
+    st[CS_STRETCH] = s;
+    const double fc = st[CS_STIFFNESS] * s;
+    st[CS_FORCE] = fc;
+    sum.add(&c.f[3 * i], fc, s);
+  }
+  return sum.total();
+}
+
+__attribute__((noinline)) double read_only(Scene &c, double *rows, double t_end)
+{
+  Sums sum;
+  for (int i = 0; i < c.n; i++) {
+    double *st = rows + i * std::size_t(CT_NCOL);
+    const double s = c.unwrap(i) - st[CS_ANCHOR], a = std::fabs(s);
+    // CT_BUDGET read as the run-out time
+    if (!(a < c.reach && a < st[CT_XS_LOW] && a <= st[CT_BOUND_S] && t_end < st[CT_BUDGET])) off_path();
+    st[CS_STRETCH] = s;
+    const double fc = st[CS_STIFFNESS] * s;
+    st[CS_FORCE] = fc;
+    sum.add(&c.f[3 * i], fc, s);
+  }
+  return sum.total();
+}
+
+__attribute__((noinline)) double hot9(Scene &c, double *rows, double dt)
+{
+  Sums sum;
+  for (int i = 0; i < c.n; i++) {
+    double *st = rows + i * std::size_t(H9);
+    const double s = c.unwrap(i) - st[H_A], a = std::fabs(s);
+    const double dH = st[H_RATE] * dt;
+    if (!(a < c.reach && a < st[H_XSLOW] && a <= st[H_BOUND_S] && dH < st[H_BUDGET])) off_path();
+    st[H_BUDGET] -= dH;
+    st[H_AGE] += dt;
+    st[H_S] = s;
+    const double fc = st[H_K] * s;
+    st[H_F] = fc;
+    sum.add(&c.f[3 * i], fc, s);
+  }
+  return sum.total();
+}
+
+__attribute__((noinline)) double hot7(Scene &c, double *rows, double t_end)
+{
+  Sums sum;
+  for (int i = 0; i < c.n; i++) {
+    double *st = rows + i * std::size_t(H7);
+    const double s = c.unwrap(i) - st[R_A], a = std::fabs(s);
+    if (!(a < c.reach && a < st[R_XSLOW] && a <= st[R_BOUND_S] && t_end < st[R_RUNOUT])) off_path();
+    st[R_S] = s;
+    const double fc = st[R_K] * s;
+    st[R_F] = fc;
+    sum.add(&c.f[3 * i], fc, s);
+  }
+  return sum.total();
+}
+
+}    // namespace
+
+int main(int argc, char **argv)
+{
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s N [passes]\n", argv[0]);
+    return 2;
+  }
+  const int n = int(std::atof(argv[1]));
+  const int passes = argc > 2 ? std::atoi(argv[2]) : std::max(20, int(2e7 / n));
+  const double dt = 0.01;
+  Scene c;
+  c.n = n;
+  c.x.resize(3 * std::size_t(n));
+  c.f.assign(3 * std::size_t(n), 0.0);
+  c.image.assign(n, IMGMAX << IMGBITS);
+  // contacts 0.1 behind their atoms: stretch 0.1, thresholds 1 (lower
+  // bound 0.75, rate bound to 0.9), budgets that never run out
+  std::vector<double> r0(n * std::size_t(CS_NCOL)), rt(n * std::size_t(CT_NCOL)),
+      h9(n * std::size_t(H9)), h7(n * std::size_t(H7));
+  for (int i = 0; i < n; i++) {
+    c.x[3 * i] = 0.01 * i;
+    double *a = &r0[i * std::size_t(CS_NCOL)], *b = &rt[i * std::size_t(CT_NCOL)];
+    a[CS_THRESHOLD] = 1.0;
+    a[CS_STIFFNESS] = 1.0;
+    a[CS_ANCHOR] = 0.01 * i - 0.1;
+    std::copy(a, a + CS_NCOL, b);
+    b[CT_BOUND_RATE] = 1e-3;
+    b[CT_BOUND_S] = 0.9;
+    b[CT_XS_LOW] = 0.75;
+    b[CT_BUDGET] = 1e300;
+    double *p = &h9[i * std::size_t(H9)], *q = &h7[i * std::size_t(H7)];
+    p[H_K] = q[R_K] = 1.0;
+    p[H_A] = q[R_A] = a[CS_ANCHOR];
+    p[H_XSLOW] = q[R_XSLOW] = 0.75;
+    p[H_BOUND_S] = q[R_BOUND_S] = 0.9;
+    p[H_RATE] = 1e-3;
+    p[H_BUDGET] = q[R_RUNOUT] = 1e300;
+  }
+  std::vector<double> ro(rt);
+  const char *names[] = {"T = 0", "thermal", "read-only", "hot 9", "hot 7 r/o"};
+  std::vector<double> best(5, HUGE_VAL);
+  double sink = 0.0;
+  for (int p = 0; p < passes; p++) {
+    const double t_end = (p + 1) * dt;
+    double t[6];
+    auto tick = [&](int k) { t[k] = std::chrono::duration<double>(Clock::now().time_since_epoch()).count(); };
+    tick(0);
+    sink += athermal(c, r0.data());
+    tick(1);
+    sink += thermal(c, rt.data(), dt);
+    tick(2);
+    sink += read_only(c, ro.data(), t_end);
+    tick(3);
+    sink += hot9(c, h9.data(), dt);
+    tick(4);
+    sink += hot7(c, h7.data(), t_end);
+    tick(5);
+    for (int k = 0; k < 5; k++) best[k] = std::min(best[k], t[k + 1] - t[k]);
+  }
+  std::printf("N = %d, %d passes; minimum ns per contact-step (ratio to T = 0):", n, passes);
+  for (int k = 0; k < 5; k++) std::printf("  %s %.2f (%.2f)", names[k], 1e9 * best[k] / n, best[k] / best[0]);
+  std::printf("\n");
+  return sink == 0.123456789 ? 1 : 0;    // keeps the sums alive
+}
