@@ -25,7 +25,7 @@
    run of its own; a block of 1 interleaves them), many times over; each
    prints its fastest pass (the machine's slow spells fall on all loops
    alike) per contact-step, and its ratio to T = 0.  Passes: 2e7/N, at
-   least 300 (a pass takes N/10^4 to N/10^3 ms).  The T = 0 loop leaves out
+   least 300 (a pass of one loop takes about N/500 to N/60 microseconds).  The T = 0 loop leaves out
    the tolerance of quasi-static driving (0 in in.bench; scan() tests it
    behind a branch).
 
@@ -169,7 +169,7 @@ template <class L> __attribute__((noinline)) double thermal(Scene &scene, double
 int main(int argc, char **argv)
 {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s N [passes]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s N [passes [block]]\n", argv[0]);
     return 2;
   }
   const int n = int(std::atof(argv[1]));
@@ -186,7 +186,7 @@ int main(int argc, char **argv)
   c.f.assign(3 * std::size_t(n), 0.0);
   c.image.assign(n, IMGMAX << IMGBITS);
   // contacts 0.1 behind their atoms: stretch 0.1, thresholds 1 (lower
-  // bound 0.75, rate bound to 0.9), budgets that never run out
+  // bound 0.75, the bound's stretch 0.9), budgets that never run out
   std::vector<double> r0(n * std::size_t(CS_NCOL)), rt(n * std::size_t(CT_NCOL)),
       h9(n * std::size_t(H9)), h7(n * std::size_t(H7));
   for (int i = 0; i < n; i++) {
