@@ -494,6 +494,16 @@ H_THERMO = " c_hsum c_hsq"
 H_SCALE = "sqrt(count(all)*c_hsq)"
 
 
+def sum_h_zero():
+    """The check sum h = 0, to 1e-9 of H_SCALE."""
+    return check("sum_h", "c_hsum", "0", scale=H_SCALE)
+
+
+def h_gone():
+    """The check that no field is left: H_SCALE <= 1e-9."""
+    return check("h_gone", H_SCALE, "0")
+
+
 def sum_h_checks(system, col):
     """The computes of sum h and sum h^2 (thermo keywords H_THERMO)."""
     src = system.source
@@ -522,7 +532,7 @@ def gen_unfix_between(b):
               between(s, ["unfix c", f"fix c2 all eq/contacts {C_ARGS}"]),
               err(QS_NOID, r"\bc\b"))
         t = "step pe f_c[7] f_q" + H_THERMO
-        post = (check("contacts", "f_c[7]", "80") + check("sum_h", "c_hsum", "0", scale=H_SCALE))
+        post = (check("contacts", "f_c[7]", "80") + sum_h_zero())
         b.add(cls, f"{sn}.redefine-c-same",
               between(s, ["unfix c", f"fix c all eq/contacts {C_ARGS}"], thermo=t, post=post,
                       pre=sum_h_checks(s, 7)), ok())
@@ -540,10 +550,10 @@ def gen_unfix_between(b):
                       pre=sum_h_checks(s, 7)), ok())
         b.add(cls, f"{sn}.pair-zero",
               between(s, ["pair_style zero 3.0", "pair_coeff * *"], thermo=t, pre=sum_h_checks(s, 7),
-                      post=check("h_gone", H_SCALE, "0")), ok())
+                      post=h_gone()), ok())
         b.add(cls, f"{sn}.pair-none",
               between(s, ["pair_style none", "comm_modify cutoff 0.5"], thermo=t, pre=sum_h_checks(s, 7),
-                      post=check("h_gone", H_SCALE, "0")), ok())
+                      post=h_gone()), ok())
         other = ("pair_style hybrid/overlay eq/elastic 3.0 check 1 zero 3.0\npair_coeff * * eq/elastic 0.06 3.0\n"
                  "pair_coeff * * zero") if pk == "elastic" else pc
         b.add(cls, f"{sn}.pair-swap", between(s, [other], thermo=t, pre=sum_h_checks(s, 7), post=post), ok())
@@ -583,7 +593,7 @@ def gen_unfix_between(b):
         line = s.line(src).split(None, 1)[1]
         pre = sum_h_checks(s, col) if col else ""
         t = f"step pe {ncount}" + (H_THERMO if col else "")
-        post = check("blocks", ncount, str(n)) + (check("sum_h", "c_hsum", "0", scale=H_SCALE) if col else "")
+        post = check("blocks", ncount, str(n)) + (sum_h_zero() if col else "")
         b.add(cls, f"{sn}.unfix-src", between(s, [f"unfix {src}"]), err(PAIR_NEEDS, r"eq/substrate|eq/meso"))
         b.add(cls, f"{sn}.redefine-src", between(s, [f"unfix {src}", f"fix {line}"], thermo=t, pre=pre,
                                                  post=post), ok())
@@ -592,7 +602,7 @@ def gen_unfix_between(b):
         b.add(cls, f"{sn}.unfix-integrator", between(s, ["unfix bd"], thermo=t, pre=pre, post=post), ok())
         b.add(cls, f"{sn}.pair-zero", between(s, ["pair_style zero 1.5", "pair_coeff * *"], thermo=t, pre=pre,
                                               post=check("blocks", ncount, str(n))
-                                              + (check("h_gone", H_SCALE, "0") if col else "")), ok())
+                                              + (h_gone() if col else "")), ok())
         other = "eq/meso " + MP_ARGS if s.style == "eq/substrate" else "eq/substrate " + S_ARGS
         b.add(cls, f"{sn}.src-other-style", between(s, [f"unfix {src}", f"fix {src} all {other}"],
                                                     thermo="step pe"), ok())
@@ -1107,7 +1117,7 @@ def box_case(s, cmds, during="", natoms="count(all)", second="run             20
     thermo = f"step pe {count_expr(s)}" + (H_THERMO if col else "")
     post = check("count", count_expr(s), natoms)
     if col:
-        post += check("sum_h", "c_hsum", "0", scale=H_SCALE)
+        post += sum_h_zero()
     return (s.text(thermo=thermo, computes=pre) + "run             20\n" + "".join(c + "\n" for c in cmds)
             + during + second + post)
 
