@@ -133,7 +133,7 @@ struct FixEQContacts::Args {
 FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
     FixEQPerAtom(lmp, narg, arg), break_tol(0.0), interacting(0), avfp(nullptr), av_flag(0),
     rounds_last(0), ran(0), in_setup(0), masks_full(0), mask_writer(0), masks_builds(-1),
-    nevaluation(0), nversion(0), chg_from(-1)
+    nevaluation(0), nversion(0), chg_from(-1), clock(0.0)
 {
   EQCite::add(lmp);
   name = fmt::format("fix {} eq/contacts", id);
@@ -156,11 +156,11 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
   scalar_flag = 1;
   vector_flag = 1;
-  size_vector = 8;
+  size_vector = 9;
   global_freq = 1;
   extscalar = 1;
   extvector = -1;
-  extlist = new int[size_vector]{1, 1, 1, 1, 1, 0, 1, 0};
+  extlist = new int[size_vector]{1, 1, 1, 1, 1, 0, 1, 0, 0};
   energy_global_flag = 1;
   respa_level_support = 1;
   ilevel_respa = 0;
@@ -180,7 +180,10 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
         error->one(FLERR, "Fix eq/contacts: {}", e.what());
       }
       st[CS_STRETCH] = unwrap.stretch(unwrap(i) - st[CS_ANCHOR]);
-      if (model->thermal_active()) st[CT_AGE] = model->thermal_model().params().rest;
+      if (model->thermal_active()) {
+        st[CT_AGE] = model->thermal_model().params().rest;
+        feq::from_engine(st, clock);
+      }
     }
 
   for (double &v : local_sum) v = 0.0;
@@ -410,8 +413,17 @@ void FixEQContacts::mark_departed()
 {
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
-  for (int i = 0; i < nlocal; i++)
-    if (!(mask[i] & groupbit)) model->depart(state[i]);
+  const bool stored = model->thermal_active();
+  for (int i = 0; i < nlocal; i++) {
+    if (mask[i] & groupbit) continue;
+    if (!stored) {
+      model->depart(state[i]);
+      continue;
+    }
+    const feq::StoredForm was = feq::to_engine(state[i], clock);
+    model->depart(state[i]);
+    feq::from_engine(state[i], clock, was);
+  }
 }
 
 // whether every local atom carries group all's bit (LAMMPS can clear it:
@@ -543,8 +555,8 @@ void FixEQContacts::apply(bool allow_breaks)
 {
   const EQUtil::Unwrap unwrap(atom, domain, idir);
   long nb = 0;
+  const double dt = in_setup || !allow_breaks ? 0.0 : update->dt;
   try {
-    const double dt = in_setup || !allow_breaks ? 0.0 : update->dt;
     const bool hot = model->thermal_model().params().thermal();
     const bool orthogonal = unwrap.orthogonal();
     const bool all = orthogonal && masks_skippable();
@@ -567,6 +579,7 @@ void FixEQContacts::apply(bool allow_breaks)
     error->one(FLERR, "Fix eq/contacts: {}", e.what());
   }
   local_sum[SUM_BREAKS] = static_cast<double>(nb);
+  clock += dt;
 }
 
 // returns the number of breaks.  ALL: the fix's group is all and every
@@ -650,14 +663,15 @@ bool FixEQContacts::settle_scan(double *st, int i, double xu, const EQUtil::Unwr
 template <bool ORTHOGONAL, bool THERMAL, bool ALL>
 long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks, double dt)
 {
-  // as scan(): the common step (ContactModel::quick_attached()) in line,
-  // everything else out of line (settle_thermal_scan()); ALL as scan()'s
+  // as scan(): the common step (ContactModel::stored_quick(): the rows are
+  // in stored form, and the step writes only the stretch and the force) in
+  // line, everything else out of line (settle_thermal_scan()); ALL as scan()'s
   const EQUtil::Unwrap unwrap = unwrap_arg;
-  const ContactModel &engine = *model;
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
   const int bit = groupbit;
   const bool quick = allow_breaks && dt > 0.0;
+  const double t_end = clock + dt;    // the rows are in stored form (feq::to_engine())
   const double reach = unwrap.stretch_reach();
   const std::size_t width = ncol;
   double *const rows = nlocal > 0 ? state[0] : nullptr;    // nmax x ncol in one block
@@ -673,10 +687,10 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
     const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
     double s = xu - st[CS_ANCHOR];
     // the common step: formed, attached, within the unwrap's reach (where
-    // its correction is the identity) and quick_attached() (at T > 0 that
+    // its correction is the identity) and stored_quick() (at T > 0 that
     // fails for a contact not formed, detached or waiting: no bound)
     const bool common = quick && (THERMAL || (st[CS_THRESHOLD] > 0.0 && !(st[CT_WAIT] > 0.0))) &&
-        std::fabs(s) < reach && engine.quick_attached<THERMAL>(st, s, dt);
+        std::fabs(s) < reach && ContactModel::stored_quick<THERMAL>(st, s, t_end);
     if (FEQ_UNLIKELY(!common)) {
       if (!settle_thermal_scan(i, unwrap_arg, xu, allow_breaks, dt, nb)) continue;
       s = st[CS_STRETCH];
@@ -697,8 +711,9 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
 // settle_thermal() of an attached contact in a step of dt > 0 (d: its
 // atom's unwrapped coordinate xu less its anchor), without its checks for
 // formation and a new run.  Within the unwrap's reach the stretch is d,
-// and scan_thermal()'s inline test found quick_attached() false for it
-// (which then changes nothing): step() would call advance() at once
+// and scan_thermal()'s inline test found stored_quick() false for it
+// (quick_attached() on the engine form is then false too, to rounding;
+// advance() takes the same step either way)
 inline bool FixEQContacts::step_attached(double *st, int i, const EQUtil::Unwrap &unwrap,
                                          double xu, double d, double dt, long &nb)
 {
@@ -736,23 +751,28 @@ inline bool FixEQContacts::absent_zeroed(double *st)
 }
 
 // scan_thermal()'s contacts off the common step (xu: the atom's unwrapped
-// coordinate), called only after its inline test failed: a formed
-// contact taking a step (a waiting one whose delay goes on: its anchor
-// follows its atom; an attached one: step_attached()), or settle_thermal()
+// coordinate), called only after its inline test failed: a waiting
+// contact whose delay goes on (its anchor follows its atom; its stored
+// times hold: it forms when its wait ends, and no bound counts its
+// budget down), else, on its row in engine form over the step from the
+// clock to clock + dt, an attached contact's step (step_attached()) or
+// settle_thermal()
 bool FixEQContacts::settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, double xu,
                                         bool allow_breaks, double dt, long &nb)
 {
   double *const st = state[i];
-  if (allow_breaks && dt > 0.0 && st[CS_THRESHOLD] > 0.0) {
-    const double d = xu - st[CS_ANCHOR];
-    if (!(st[CT_WAIT] > 0.0)) return step_attached(st, i, unwrap, xu, d, dt, nb);
-    if (model->quick_wait(st, unwrap.stretch(d), dt)) {
-      st[CS_ANCHOR] = xu;
-      st[CS_FORCE] = 0.0;
-      return false;
-    }
+  const bool stepping = allow_breaks && dt > 0.0 && st[CS_THRESHOLD] > 0.0;
+  const double d = xu - st[CS_ANCHOR];
+  if (stepping && st[CT_WAIT] > 0.0 && model->quick_wait(st, unwrap.stretch(d), dt)) {
+    st[CS_ANCHOR] = xu;
+    st[CS_FORCE] = 0.0;
+    return false;
   }
-  return settle_thermal(i, unwrap, allow_breaks, dt, nb);
+  const feq::StoredForm was = feq::to_engine(st, clock);
+  const bool on = stepping && !(st[CT_WAIT] > 0.0) ? step_attached(st, i, unwrap, xu, d, dt, nb)
+                                                    : settle_thermal(i, unwrap, allow_breaks, dt, nb);
+  feq::from_engine(st, clock + dt, was);
+  return on;
 }
 
 // a contact off the common step: formed, its step taken (or held), its
@@ -823,7 +843,8 @@ bool FixEQContacts::settle(double *st, int i, double xu, const EQUtil::Unwrap &u
    follows every round's breaks); the pair style applies -h_i afterwards
 ------------------------------------------------------------------------- */
 
-void FixEQContacts::stretches()
+// t: the time at which contacts that form now form (the end of the step)
+void FixEQContacts::stretches(double t)
 {
   const int *const mask = atom->mask;
   const tagint *const tag = atom->tag;
@@ -836,7 +857,10 @@ void FixEQContacts::stretches()
       qbuf[i] = NOT_A_CONTACT;
       if (!(mask[i] & groupbit)) continue;
       double *const st = state[i];
-      if (st[CS_THRESHOLD] == 0.0) model->form(st, static_cast<uint64_t>(tag[i]), unwrap(i));
+      if (st[CS_THRESHOLD] == 0.0) {
+        model->form(st, static_cast<uint64_t>(tag[i]), unwrap(i));
+        if (model->thermal_active()) feq::from_engine(st, t);
+      }
       if (st[CS_THRESHOLD] < 0.0) {
         st[CS_STRETCH] = st[CS_FORCE] = st[CS_FIELD] = 0.0;
         continue;
@@ -863,7 +887,7 @@ void FixEQContacts::stretches()
 
 const double *FixEQContacts::source_coordinates()
 {
-  if (static_cast<int>(qbuf.size()) < atom->nlocal) stretches();
+  if (static_cast<int>(qbuf.size()) < atom->nlocal) stretches(clock);
   return qbuf.data();
 }
 
@@ -919,7 +943,7 @@ void FixEQContacts::field_step(bool allow_breaks, double dt)
   if (hot_setup && !delays) reform_waiting();
   if (probed) save_effective();
   if (probed && delays) count_down(dt);
-  stretches();
+  stretches(clock + dt);
   local_sum[SUM_BREAKS] = 0.0;
   rounds_last = 0;
   broke.clear();
@@ -933,9 +957,10 @@ void FixEQContacts::field_step(bool allow_breaks, double dt)
       if (probed && delays) rejoin(hooks);
       if (probed) thermal_stage(hooks.field(), dt);
       if (hot_setup) new_run();
+      // (thermal rows stay in stored form: the avalanche takes the time)
       res = avalanche(*model, state, members.data(), static_cast<int>(members.size()), break_tol,
                       hooks, blist, dsv, probed ? tbreak.data() : nullptr,
-                      probed ? tage.data() : nullptr);
+                      probed ? tage.data() : nullptr, model->thermal_active() ? clock + dt : NAN);
     } catch (const BreakError &e) {
       error->one(FLERR, "Fix eq/contacts: {}", e.what());
     }
@@ -947,6 +972,7 @@ void FixEQContacts::field_step(bool allow_breaks, double dt)
   } else {
     view = elastic->field_view();
   }
+  clock += dt;
   // the field of the final state, for the output and next_event(); the
   // stretches of re-formed contacts as every later evaluation at these
   // positions finds them (x - anchor), so that run 0 or a restart changes
@@ -968,9 +994,14 @@ void FixEQContacts::field_step(bool allow_breaks, double dt)
 void FixEQContacts::new_run()
 {
   const int *const mask = atom->mask;
-  for (int i = 0; i < atom->nlocal; i++)
-    if ((mask[i] & groupbit) && state[i][CS_THRESHOLD] > 0.0) model->new_run(state[i]);
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit) || !(state[i][CS_THRESHOLD] > 0.0)) continue;
+    const feq::StoredForm was = feq::to_engine(state[i], clock);
+    model->new_run(state[i]);
+    feq::from_engine(state[i], clock, was);
+  }
 }
+
 
 /* ----------------------------------------------------------------------
    formation delays with the field (ContactModel::leaves_field()): a
@@ -1004,7 +1035,9 @@ void FixEQContacts::count_down(double dt)
                         "(numerical instability: check the timestep, the forces and the "
                         "integrator)", id, atom->tag[i], m);
     if (model->quick_wait(st, m, dt)) continue;    // its anchor: stretches()
+    const feq::StoredForm was = feq::to_engine(st, clock);
     st[CS_ANCHOR] = xu - model->rejoin(st, m, dt);
+    feq::from_engine(st, clock + dt, was);
     joins.push_back(i);
   }
 }
@@ -1066,17 +1099,20 @@ void FixEQContacts::thermal_stage(const feq::AvalancheField &f, double dt)
     tage.resize(atom->nmax);
   }
   const bool hot = model->thermal_model().params().thermal();
+  const double t_end = clock + dt;    // the rows are in stored form (feq::to_engine())
   for (const int i : members) {
     double *st = state[i];
     tbreak[i] = NAN;
     tage[i] = 0.0;
     if (!(st[CS_THRESHOLD] > 0.0) || !std::isfinite(eprev[i])) continue;
     const double e1 = st[CS_STRETCH] + f.h[i] / st[CS_STIFFNESS];
-    if (hot ? model->quick_probe<true>(st, eprev[i], e1, dt)
-            : model->quick_probe<false>(st, eprev[i], e1, dt))
+    if (hot ? ContactModel::stored_quick_probe<true>(st, eprev[i], e1, t_end)
+            : ContactModel::stored_quick_probe<false>(st, eprev[i], e1, t_end))
       continue;
+    const feq::StoredForm was = feq::to_engine(st, clock);
     const ContactModel::ThermalProbe r =
         model->probe(st, static_cast<uint64_t>(tag[i]), eprev[i], e1, dt);
+    feq::from_engine(st, t_end, was);
     if (!r.broke) continue;
     tbreak[i] = eprev[i] + (e1 - eprev[i]) * r.frac;
     tage[i] = (1.0 - r.frac) * dt;
@@ -1095,6 +1131,7 @@ void FixEQContacts::reform_waiting()
     if (!(mask[i] & groupbit) || !(st[CS_THRESHOLD] > 0.0) || !(st[CT_WAIT] > 0.0)) continue;
     st[CS_ANCHOR] = unwrap(i) - st[CT_PENDING];
     st[CT_WAIT] = st[CT_PENDING] = 0.0;
+    st[CT_FORMED] = clock;    // (age 0, as it waited)
   }
 }
 
@@ -1221,6 +1258,7 @@ double FixEQContacts::compute_vector(int n)
         return global_sum[SUM_BREAKS] > 0.0 ? 1.0 : 0.0;
       }
       return static_cast<double>(rounds_last);
+    case 8: return clock;
   }
   return 0.0;
 }
@@ -1236,18 +1274,41 @@ void FixEQContacts::write_restart(FILE *fp)
 {
   bigint all = 0;
   MPI_Allreduce(&local_breaks_total, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  EQRecord::write(lmp, fp, {static_cast<double>(all + breaks_offset), static_cast<double>(seed)},
+  EQRecord::write(lmp, fp,
+                  {static_cast<double>(all + breaks_offset), static_cast<double>(seed), clock},
                   shaping);
 }
 
 void FixEQContacts::restart(char *buf)
 {
-  const std::vector<double> list = EQRecord::read(lmp, this, buf, 2, shaping, "contacts");
+  // a record of 2 values: written before the clock (its thermal rows kept
+  // the budget and the age in engine form; athermal rows are the same)
+  const auto *head = reinterpret_cast<const double *>(buf);
+  const bool clockless = head[0] == feq::RECORD_MAGIC && head[1] == feq::RECORD_FORMAT && head[2] == 2.0;
+  if (clockless && model->thermal_active())
+    error->all(FLERR, "Fix {} eq/contacts: the restart file was written by an earlier version of "
+                      "the package (before 28 Nov 2026), whose contacts with the keywords {} kept "
+                      "their hazard budgets and ages in another form: such a file cannot be "
+                      "continued with these keywords; start the run afresh, or continue it with "
+                      "that version (a file written without these keywords: re-specify the fix "
+                      "without them)", id, THERMAL_KEYWORDS);
+  const std::vector<double> list =
+      EQRecord::read(lmp, this, buf, clockless ? 2 : 3, shaping, "contacts");
   const double big = 9007199254740992.0;    // 2^53
   if (!(list[0] >= 0.0 && list[0] <= big && list[0] == std::floor(list[0])) ||
       !(list[1] >= 1.0 && list[1] <= big && list[1] == std::floor(list[1])))
     error->all(FLERR, "Fix {} eq/contacts: the restart file's record of this fix is unusable: "
                       "breaks {} and seed {} are not counts (a corrupt file)", id, list[0], list[1]);
+  const double restored = clockless ? 0.0 : list[2];
+  if (!std::isfinite(restored) || restored < 0.0)
+    error->all(FLERR, "Fix {} eq/contacts: the restart file's record of this fix is unusable: "
+                      "clock {} (a corrupt file)", id, restored);
+  // contacts formed at the fix's definition (atoms without stored rows)
+  // formed at the restored time; stored rows replace the others
+  if (model->thermal_active())
+    for (int i = 0; i < atom->nlocal; i++)
+      if (state[i][CS_THRESHOLD] > 0.0) state[i][CT_FORMED] += restored - clock;
+  clock = restored;
   breaks_offset = static_cast<bigint>(list[0]);
   local_breaks_total = 0;
   if (static_cast<bigint>(list[1]) != seed && comm->me == 0)
@@ -1275,9 +1336,9 @@ void FixEQContacts::check_restored(int i)
   else if (!(nb >= 0.0 && nb <= 9007199254740992.0 && nb == std::floor(nb)))
     why = fmt::format("break count {}", nb);
   if (why.empty() && model->thermal_active() &&
-      !(st[CT_BUDGET] >= 0.0 && st[CT_AGE] >= 0.0 && st[CT_WAIT] >= 0.0))
-    why = fmt::format("hazard budget {}, age {}, delay left {}", st[CT_BUDGET], st[CT_AGE],
-                      st[CT_WAIT]);
+      !(st[CT_HELD] >= 0.0 && st[CT_WAIT] >= 0.0 && st[CT_RUNOUT] >= 0.0))
+    why = fmt::format("hazard budget {}, delay left {}, run-out time {}", st[CT_HELD], st[CT_WAIT],
+                      st[CT_RUNOUT]);
   if (why.empty() && model->thermal_active() &&
       !(st[CT_BOUND_RATE] >= 0.0 && st[CT_CANDIDATE] >= 0.0 &&
         st[CT_CANDIDATE] == std::floor(st[CT_CANDIDATE]) && st[CT_XS_LOW] >= 0.0))
@@ -1292,12 +1353,12 @@ void FixEQContacts::check_restored(int i)
 // only where the file holds another layout of this fix
 std::string FixEQContacts::layout_hint(long stored) const
 {
-  if (stored == feq::CT_NCOL_HAZARD_BUDGET)
+  if (stored == feq::CT_NCOL_BUDGET_AGE)
     return fmt::format("the file was written by an earlier version of the package, whose contacts "
-                       "with the keywords {} kept {} values (thermal breaking against a hazard "
-                       "budget; now sampled by thinning, {} values): such a file cannot be "
-                       "continued; start the run afresh, or continue it with that version",
-                       THERMAL_KEYWORDS, feq::CT_NCOL_HAZARD_BUDGET, static_cast<int>(CT_NCOL));
+                       "with the keywords {} kept {} values (their hazard budgets and ages in "
+                       "another form; now {} values): such a file cannot be continued; start the "
+                       "run afresh, or continue it with that version",
+                       THERMAL_KEYWORDS, feq::CT_NCOL_BUDGET_AGE, static_cast<int>(CT_NCOL));
   if (stored != CS_NCOL && stored != CT_NCOL) return "";
   return fmt::format("the keywords {} add {} values per contact; give one of them in both the run "
                      "that wrote the file and this one, or in neither",

@@ -135,6 +135,10 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   std::vector<int> members, blist;
   std::vector<int> joins;    // contacts whose delay ended in this step (count_down())
   std::vector<int> broke;    // contacts re-formed in this step's avalanche (once per round)
+  // the time on the clock of this fix's contacts (thermal rows keep their
+  // budgets and ages as times on it: feq::to_engine()); it goes on by dt
+  // at each step of a run, and is restart data
+  double clock;
   bigint nevaluation, nversion, chg_from;
   EQChangeSet chg;
 
@@ -155,7 +159,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void open_avalanches(const std::string &file);
   void mark_departed();
   EQElasticField *field_now();
-  void stretches();
+  void stretches(double t);
   void field_step(bool allow_breaks, double dt);
   void save_effective();
   void thermal_stage(const feq::AvalancheField &f, double dt);

@@ -1416,3 +1416,306 @@ TEST(Avalanche, WaitingContactsLeaveTheField)
   EXPECT_NEAR(f.K[1], 0.01, 1e-15);    // only contact 2 left as its partner
   EXPECT_NEAR(f.h[1], 0.0, 1e-15);
 }
+
+/* ----------------------------------------------------------------------
+   the stored form of a thermal row (to_engine(), from_engine(),
+   stored_quick()): fix eq/contacts keeps the budget and the age as times
+   on its clock, so that its common step writes neither.  Its contacts
+   must live the lives of the engine form: the same breaks at the same
+   steps, the same ages and budgets to rounding
+------------------------------------------------------------------------- */
+
+namespace {
+
+// the specs the stored form is checked with: temperature with a barrier
+// form, with log aging, with an exponential delay; aging alone at T = 0
+std::vector<ThermalSpec> stored_specs()
+{
+  std::vector<ThermalSpec> v;
+  v.push_back(theta_spec(0.05, 2.0, 0.25));
+  ThermalSpec aged = theta_spec(0.05);
+  aged.aging = AgingLaw::LOG;
+  aged.beta = 0.1;
+  aged.tau_a = 0.5;
+  v.push_back(aged);
+  ThermalSpec delayed = theta_spec(0.05);
+  delayed.delay = DelayKind::EXPONENTIAL;
+  delayed.tau = 3.0;
+  v.push_back(delayed);
+  ThermalSpec cold = theta_spec(0.0);
+  cold.aging = AgingLaw::EXP;
+  cold.beta = 0.3;
+  cold.tau_a = 2.0;
+  v.push_back(cold);
+  // hot enough for the top bound (any stretch): rejected candidates leave
+  // the bound and its rate as they were, with a new budget
+  v.push_back(theta_spec(1.0));
+  return v;
+}
+
+// a contact's anchor after a step that left it renewed or waiting (as fix
+// eq/contacts' took_step()); the step of a stored row in engine form
+void follow(std::vector<double> &r, const ThermalStepResult &res, double x)
+{
+  if (!res.attached && r[CS_THRESHOLD] > 0.0) r[CS_ANCHOR] = x;
+  else if (res.renewed) r[CS_ANCHOR] = x - res.stretch;
+}
+
+}    // namespace
+
+// the engine form (a, stepped as before the stored form), the stored
+// form with the fix's common step (b), and the stored form sent through
+// the engine at every third step or so whether or not the common step
+// would do (c): a and b live the same lives, and c keeps b's stored row
+// to the bit (its times do not depend on when it was converted)
+TEST(StoredForm, ContactsLiveTheLivesOfTheEngineForm)
+{
+  for (const ThermalSpec &t : stored_specs()) {
+    const ContactModel m(1.0, 4711, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"),
+                         spec(make_uniform(-0.3, 0.3), "uniform -0.3 0.3"), DistributionSpec{},
+                         true, true, false, t);
+    const bool hot = t.thermal();
+    const double dt = 0.05;
+    long quick = 0, total = 0, breaks = 0;
+    for (uint64_t tag = 1; tag <= 60; ++tag) {
+      std::vector<double> a(m.columns(), 0.0);
+      m.form(a.data(), tag, 0.0);
+      std::vector<double> b = a;
+      from_engine(b.data(), 0.0);
+      std::vector<double> c = b;
+      long na = 0, nb = 0, nc = 0;
+      int top = 0;
+      double clock = 0.0;
+      for (int k = 1; k <= 4000; ++k) {
+        // slow drift and a swing: stretches up and down, breaks both ways
+        const double x = 0.002 * k + 0.4 * std::sin(0.003 * k * (1.0 + 0.1 * (tag % 7)));
+        follow(a, m.step(a.data(), tag, x - a[CS_ANCHOR], dt, na), x);
+        const double t_end = clock + dt;
+        const double s = x - b[CS_ANCHOR];
+        const bool attached = b[CS_THRESHOLD] > 0.0 && !(b[CT_WAIT] > 0.0);
+        ++total;
+        if (attached && (hot ? ContactModel::stored_quick<true>(b.data(), s, t_end)
+                             : ContactModel::stored_quick<false>(b.data(), s, t_end))) {
+          ++quick;
+        } else {
+          const StoredForm was = to_engine(b.data(), clock);
+          follow(b, m.step(b.data(), tag, s, dt, nb), x);
+          from_engine(b.data(), t_end, was);
+        }
+        if ((k * tag) % 3 == 0 || !(attached && (hot ? ContactModel::stored_quick<true>(c.data(), s, t_end)
+                                                     : ContactModel::stored_quick<false>(c.data(), s, t_end)))) {
+          const StoredForm was = to_engine(c.data(), clock);
+          follow(c, m.step(c.data(), tag, s, dt, nc), x);
+          from_engine(c.data(), t_end, was);
+        }
+        clock = t_end;
+        ASSERT_EQ(na, nb) << "tag " << tag << " step " << k;
+        ASSERT_EQ(a[CS_NBREAK], b[CS_NBREAK]) << "tag " << tag << " step " << k;
+        ASSERT_EQ(0, std::memcmp(b.data(), c.data(), b.size() * sizeof(double)))
+            << "tag " << tag << " step " << k;
+        if (b[CT_BOUND_S] == ContactModel::BOUND_ALL) ++top;
+      }
+      if (t.theta >= 1.0) EXPECT_GT(top, 1000) << tag;    // the top bound is exercised
+      breaks += na;
+      // the same contact now: its stretch, threshold and anchor to
+      // rounding, its age and budget through the clock
+      EXPECT_NEAR(a[CS_STRETCH], b[CS_STRETCH], 1e-9) << tag;
+      EXPECT_EQ(a[CS_THRESHOLD], b[CS_THRESHOLD]) << tag;
+      EXPECT_NEAR(a[CS_ANCHOR], b[CS_ANCHOR], 1e-9) << tag;
+      EXPECT_EQ(a[CT_WAIT] > 0.0, b[CT_WAIT] > 0.0) << tag;
+      const StoredForm now = to_engine(b.data(), clock);
+      EXPECT_NEAR(now.age, a[CT_AGE], 1e-9 * (1.0 + clock)) << tag;
+      EXPECT_NEAR(now.budget, a[CT_BUDGET], 1e-9) << tag;
+    }
+    // the common step is the common case, and the lives are many
+    EXPECT_GT(quick, total * 7 / 10);
+    EXPECT_GT(breaks, 60 * 5);
+  }
+}
+
+// a call in which no time passes and nothing changes leaves the stored
+// row as it was, to the bit (the set-up of a run, run 0, a restart)
+TEST(StoredForm, NoTimeAndNoChangeKeepTheBits)
+{
+  for (const ThermalSpec &t : stored_specs()) {
+    const ContactModel m = thermal_model(t, true, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"));
+    for (uint64_t tag = 1; tag <= 40; ++tag) {
+      std::vector<double> b(m.columns(), 0.0);
+      m.form(b.data(), tag, 0.0);
+      from_engine(b.data(), 0.0);
+      double clock = 0.0;
+      long nb = 0;
+      for (int k = 1; k <= 137 * static_cast<int>(tag); ++k) {
+        const double x = 0.003 * k;
+        const StoredForm was = to_engine(b.data(), clock);
+        follow(b, m.step(b.data(), tag, x - b[CS_ANCHOR], 0.1, nb), x);
+        clock += 0.1;
+        from_engine(b.data(), clock, was);
+      }
+      const std::vector<double> before = b;
+      const StoredForm was = to_engine(b.data(), clock);
+      m.new_run(b.data());
+      from_engine(b.data(), clock, was);
+      ASSERT_EQ(0, std::memcmp(b.data(), before.data(), b.size() * sizeof(double))) << tag;
+    }
+  }
+}
+
+// the budget is counted down only while a bound with a rate holds it; a
+// waiting contact is of age 0 and forms when its wait ends
+TEST(StoredForm, BudgetAndAgeThroughTheClock)
+{
+  const ContactModel m = thermal_model(theta_spec(0.05), true);
+  std::vector<double> r(m.columns(), 0.0);
+  m.form(r.data(), 7, 0.0);
+  ASSERT_LT(r[CT_BOUND_S], 0.0);    // no bound yet
+  const double budget = r[CT_BUDGET];
+  r[CT_AGE] = 1.5;
+  from_engine(r.data(), 10.0);
+  EXPECT_EQ(r[CT_RUNOUT], NEVER);
+  EXPECT_EQ(r[CT_FORMED], 8.5);
+  StoredForm w = to_engine(r.data(), 30.0);
+  EXPECT_EQ(w.budget, budget);    // held
+  EXPECT_EQ(w.age, 21.5);
+  // a bound of rate 0.25: the budget runs out budget/0.25 later
+  r[CT_BOUND_S] = 0.5;
+  r[CT_BOUND_RATE] = 0.25;
+  from_engine(r.data(), 30.0, w);
+  EXPECT_DOUBLE_EQ(r[CT_RUNOUT], 30.0 + budget / 0.25);
+  w = to_engine(r.data(), 31.0);
+  EXPECT_NEAR(w.budget, budget - 0.25, 1e-14);
+  EXPECT_EQ(w.age, 22.5);
+  // the quick test: within the bound and before the run-out
+  from_engine(r.data(), 31.0, w);
+  const double out = r[CT_RUNOUT];
+  EXPECT_TRUE(ContactModel::stored_quick<true>(r.data(), 0.2, std::nextafter(out, 0.0)));
+  EXPECT_FALSE(ContactModel::stored_quick<true>(r.data(), 0.2, out));
+  EXPECT_FALSE(ContactModel::stored_quick<true>(r.data(), 0.6, 31.1));    // beyond the bound
+  EXPECT_FALSE(ContactModel::stored_quick<true>(r.data(), 1.2, 31.1));    // beyond x_s
+  // broken at 40 with a wait of 4 (as break_once() leaves it): formed when
+  // the wait ends, of age 0 until then, its new budget held
+  w = to_engine(r.data(), 40.0);
+  r[CT_WAIT] = 4.0;
+  r[CT_AGE] = 0.0;
+  r[CT_BUDGET] = 0.7;
+  r[CT_BOUND_S] = ContactModel::NO_BOUND;
+  from_engine(r.data(), 40.0, w);
+  EXPECT_EQ(r[CT_FORMED], 44.0);
+  EXPECT_EQ(r[CT_RUNOUT], NEVER);
+  r[CT_WAIT] -= 1.0;    // a step of 1 (quick_wait())
+  w = to_engine(r.data(), 41.0);
+  EXPECT_EQ(w.age, 0.0);
+  EXPECT_EQ(w.budget, 0.7);
+}
+
+// stored_quick_probe() decides as quick_probe() (to rounding) and writes
+// nothing: the probe of the stored row through the engine is the same
+TEST(StoredForm, QuickProbeIsQuickProbe)
+{
+  ThermalSpec t = theta_spec(0.1, 2.0, 0.25);
+  t.aging = AgingLaw::LOG;
+  t.beta = 0.05;
+  t.tau_a = 1.0;
+  const ContactModel m =
+      thermal_model(t, true, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"));
+  int quick = 0, slow = 0;
+  for (uint64_t tag = 1; tag <= 4000; ++tag) {
+    std::vector<double> a(m.columns(), 0.0);
+    m.form(a.data(), tag, 0.0);
+    const double e0 = -0.7 + 1.4 * (tag % 11) / 10.0, dt = 0.2 + (tag % 3);
+    if (m.probe(a.data(), tag, 0.0, e0, dt).broke) continue;
+    // the row as stored at time dt (the first probe's end), probed to 2 dt
+    std::vector<double> b = a;
+    from_engine(b.data(), dt);
+    const double e1 = e0 + 0.01 * dt * (tag % 2 ? 1.0 : -1.0);
+    const std::vector<double> before = b;
+    const bool engine = m.quick_probe<true>(a.data(), e0, e1, dt);
+    const bool stored = ContactModel::stored_quick_probe<true>(b.data(), e0, e1, 2.0 * dt);
+    EXPECT_EQ(engine, stored) << tag;
+    EXPECT_EQ(b, before) << tag;    // untouched
+    if (stored) {
+      const StoredForm now = to_engine(b.data(), 2.0 * dt);
+      EXPECT_NEAR(now.age, a[CT_AGE], 1e-12) << tag;
+      EXPECT_NEAR(now.budget, a[CT_BUDGET], 1e-12) << tag;
+      ++quick;
+    } else {
+      ++slow;
+    }
+  }
+  EXPECT_GT(quick, 1000);
+  EXPECT_GT(slow, 100);
+}
+
+// a contact that leaves the group and comes back (the same break count)
+// starts a life of its own at its return
+TEST(StoredForm, ReentryIsANewLife)
+{
+  const ContactModel m = thermal_model(theta_spec(0.05), true);
+  std::vector<double> r(m.columns(), 0.0);
+  m.form(r.data(), 9, 0.0);
+  from_engine(r.data(), 2.0);
+  StoredForm w = to_engine(r.data(), 5.0);
+  m.depart(r.data());
+  from_engine(r.data(), 5.0, w);
+  w = to_engine(r.data(), 8.0);
+  m.form(r.data(), 9, 1.0);    // the re-entry: event 0 again, another stream
+  ASSERT_EQ(r[CS_NBREAK], 0.0);
+  from_engine(r.data(), 8.0, w);
+  EXPECT_EQ(r[CT_FORMED], 8.0);
+  EXPECT_EQ(to_engine(r.data(), 9.5).age, 1.5);
+}
+
+// the avalanche on rows in stored form (its clock given) breaks what it
+// breaks on the same rows in engine form: the aged thresholds from the
+// formation times, and the new lives' times on the clock
+TEST(StoredForm, AvalancheOfStoredRows)
+{
+  ThermalSpec t = theta_spec(0.05);
+  t.aging = AgingLaw::LOG;
+  t.beta = 0.3;
+  t.tau_a = 1.0;
+  const ContactModel m(1.0, 4711, spec(make_uniform(0.75, 1.25), "uniform 0.75 1.25"),
+                       spec(make_uniform(-0.2, 0.2), "uniform -0.2 0.2"), DistributionSpec{},
+                       true, true, false, t);
+  const int n = 12;
+  int broke = 0, aged = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    std::vector<std::vector<double>> a(n), b(n);
+    std::vector<double *> ra, rb;
+    const double clock = 50.0 + trial;
+    for (int i = 0; i < n; ++i) {
+      a[i].assign(m.columns(), 0.0);
+      m.form(a[i].data(), 1000 * trial + i, 0.0);
+      a[i][CT_AGE] = 0.5 * ((i * 7 + trial) % 13);    // aged thresholds up to 1 + 0.3 ln 7
+      // stretched to between x_s0 and 1.1 x_s0 A(age): some over the aged threshold
+      a[i][CS_STRETCH] = a[i][CS_THRESHOLD] * (1.0 + 0.1 * ((i * 5 + trial) % 11) / 10.0 *
+                                                         m.thermal_model().factor(a[i][CT_AGE]));
+      b[i] = a[i];
+      from_engine(b[i].data(), clock);
+      ra.push_back(a[i].data());
+      rb.push_back(b[i].data());
+      if (std::fabs(a[i][CS_STRETCH]) < m.threshold_now(a[i].data())) ++aged;
+    }
+    DenseField fa(chain_matrix(n, 0.002), ra), fb(chain_matrix(n, 0.002), rb);
+    fa.thermal_rows = fb.thermal_rows = true;
+    fa.recompute();
+    fb.recompute();
+    std::vector<int> members(n), list;
+    for (int i = 0; i < n; ++i) members[i] = i;
+    std::vector<double> ds;
+    const AvalancheResult x = avalanche(m, ra.data(), members.data(), n, 0.0, fa, list, ds);
+    const AvalancheResult y =
+        avalanche(m, rb.data(), members.data(), n, 0.0, fb, list, ds, nullptr, nullptr, clock);
+    ASSERT_EQ(x.size, y.size) << trial;
+    ASSERT_EQ(x.rounds, y.rounds) << trial;
+    broke += x.size;
+    for (int i = 0; i < n; ++i) {
+      EXPECT_EQ(a[i][CS_NBREAK], b[i][CS_NBREAK]) << trial << " " << i;
+      EXPECT_EQ(a[i][CS_THRESHOLD], b[i][CS_THRESHOLD]) << trial << " " << i;
+      EXPECT_NEAR(a[i][CS_STRETCH], b[i][CS_STRETCH], 1e-12) << trial << " " << i;
+      EXPECT_NEAR(to_engine(b[i].data(), clock).age, a[i][CT_AGE], 1e-12) << trial << " " << i;
+    }
+  }
+  EXPECT_GT(broke, 20);    // breaks, and contacts that aging kept from breaking
+  EXPECT_GT(aged, 40);
+}

@@ -118,7 +118,7 @@ def test_ranks_and_restart(tmp_path, extra):
     follows the neighbour lists: rounding; test_eq_interact_parallel.py);
     a run split by write_restart/read_restart on 2 -> 4 ranks continues
     it the same way."""
-    more = "f_c[8] f_c[9] f_c[10] f_c[11]"    # budget, age, wait, pending
+    more = "f_c[8] f_c[9] f_c[10] f_c[11]"    # budget's run-out, formation, wait, pending
     data = tmp_path / "contacts.data"    # the same atom IDs at the same sites
     (tmp_path / "in.data").write_text(
         "units lj\ndimension 2\natom_style atomic\nboundary p p p\n"
@@ -505,19 +505,25 @@ def test_delayed_contacts_reform_by_their_rule(tmp_path, rule):
     d = tmp_path
     (d / "in.base").write_text(INPUT.read_text().replace("reform delta 0.0", "reform delta 0.3"))
     f = d / "in.rule"
-    f.write_text("include %s\ndump d all custom 1 ${out}/rule.*.dump id f_c[1] f_c[2] f_c[3] "
-                 "f_c[7] f_c[9] f_c[10]\ndump_modify d sort id format float %%.17g\nrun 160\n"
-                 % (d / "in.base"))
+    # per-atom column 9 is the time a contact formed, on the fix's clock
+    # (global entry 9): a contact of age 0 formed at the dump's step.  (The
+    # clock reaches the dump through an equal-style variable, which LAMMPS
+    # passes on with 15 digits: ages below 1e-9 are 0, the next is dt = 0.05)
+    f.write_text("include %s\nvariable clock equal f_c[9]\nvariable clk atom v_clock\n"
+                 "dump d all custom 1 ${out}/rule.*.dump id f_c[1] f_c[2] f_c[3] "
+                 "f_c[7] f_c[9] f_c[10] v_clk\ndump_modify d sort id format float %%.17g\n"
+                 "run 160\n" % (d / "in.base"))
     eqtools.run_lammps(f, dict(out=d, extra=extra, more="", Xmax=1.0, dX=0.0005), cwd=d)
     exact_e = exact_s = joined = waiting = 0
     for dump in sorted(d.glob("rule.*.dump")):
         text = dump.read_text().split("ITEM: ATOMS")[-1].splitlines()[1:]
         a = np.array([[float(x) for x in l.split()] for l in text if l.strip()])
-        s, force, h, age, wait = a[:, 1], a[:, 3], a[:, 4], a[:, 5], a[:, 6]
+        s, force, h, wait = a[:, 1], a[:, 3], a[:, 4], a[:, 6]
+        age = a[:, 7] - a[:, 5]
         w = wait > 0
         assert (s[w] == 0).all() and (force[w] == 0).all(), dump
         waiting += w.sum()
-        j = ~w & (age == 0.0)
+        j = ~w & (np.abs(age) < 1e-9)
         joined += j.sum()
         exact_e += (np.abs(np.abs(s[j] + h[j]) - 0.3) < 1e-12).sum()
         exact_s += (np.abs(np.abs(s[j]) - 0.3) < 1e-12).sum()

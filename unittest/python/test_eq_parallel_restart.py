@@ -24,8 +24,9 @@ CASES = {
     "smeared": {"threshold": "gaussian 1.0 0.25",
                 "extra": "reform gaussian 0.2 0.05 stiffness gaussian 1.0 0.2 start reform"},
     "realistic-step": {"threshold": "realistic 1.0", "extra": "crossing step reform uniform 0 0.2"},
-    # temperature, aging and an exponential delay: hazard budgets, ages and
-    # delays left travel with the atoms and go into restart files
+    # temperature, aging and an exponential delay: the budgets' run-out
+    # times, formation times and delays left travel with the atoms and go
+    # into restart files (with the fix's clock)
     "thermal-aging-delay": {"extra": "thermal 0.2 1.0 1.0 aging log 0.05 1.0 delay exp 0.1 rest 3",
                             "dumpextra": "f_c[8] f_c[9] f_c[10] f_c[11]"},
 }

@@ -293,3 +293,80 @@ def test_detached_contacts_stay_detached_through_runs_and_restarts(tmp_path):
     assert len(gone) == breaks[-1] and all(float(r[2]) == 0.0 for r in gone)
     assert (dsplit / "dump.final").read_text().split("ITEM: ATOMS")[-1] == \
         (dref / "dump.final").read_text().split("ITEM: ATOMS")[-1]
+
+
+AGES = """
+units lj
+dimension 2
+atom_style atomic
+boundary p p p
+lattice hex 1.1547005383792515
+region box block 0 10 0 12 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+comm_modify cutoff 0.5
+fix c all eq/contacts 1.0 4711 threshold uniform 0.75 1.25 reform uniform -0.2 0.2 &
+    thermal 0.1 1.0 1.0 aging log 0.2 1.0 rest 3.0 crossing ${crossing}
+fix slide all move linear 0.05 0.0 0.0 units box
+timestep 0.25
+variable clock equal f_c[9]
+thermo_style custom step v_clock
+thermo_modify format float %.17g
+thermo 1
+dump d all custom 1 ages.* id f_c[4] f_c[8] f_c[9]
+dump_modify d sort id format float %.17g
+run 400
+"""
+
+
+@pytest.mark.parametrize("crossing", ["step", "exact"])
+def test_formation_times_follow_the_breaks(tmp_path, crossing):
+    """Per-atom columns 8 and 9 are times on the fix's clock (global entry
+    9): the time the budget runs out and the time the contact formed.
+    Against bookkeeping of the break counts (column 4) dumped every step,
+    independent of how the fix keeps them: the clock is the sum of the
+    steps; a contact formed at the fix's definition has age rest + clock;
+    one that broke in step k formed at its end with crossing step, within
+    it with crossing exact; no age is negative, and no budget has run out
+    before the clock (a candidate is never in the past).  480 contacts,
+    about 3 lives each in 400 steps of 0.25 at v = 0.05."""
+    (tmp_path / "in.ages").write_text(AGES)
+    log = eqtools.run_lammps(tmp_path / "in.ages", {"crossing": crossing}, cwd=tmp_path)
+    clock = {}
+    for line in log.splitlines():
+        f = line.split()
+        if len(f) == 2 and f[0].isdigit():
+            clock[int(f[0])] = float(f[1])
+    dt = 0.25
+    assert len(clock) == 401
+    assert all(abs(clock[k] - k * dt) <= 1e-12 * (1 + k) for k in clock)
+
+    def frame(k):
+        rows = (tmp_path / f"ages.{k}").read_text().split("ITEM: ATOMS")[1].strip().splitlines()[1:]
+        return np.array([[float(x) for x in r.split()] for r in rows])
+
+    prev = frame(0)
+    assert np.all(prev[:, 3] == -3.0)    # formed at the definition, rest 3 before
+    last_break = np.full(len(prev), -1)
+    renewed = fresh_steps = 0
+    for k in range(1, 401):
+        cur = frame(k)
+        t0, t1 = clock[k - 1], clock[k]
+        broke = cur[:, 1] > prev[:, 1]
+        last_break[broke] = k
+        formed = cur[:, 3]
+        fresh = last_break < 0
+        fresh_steps += fresh.sum()
+        assert np.all(formed[fresh] == -3.0), k
+        if crossing == "step":
+            assert np.all(np.abs(formed[broke] - t1) <= 1e-12 * t1), k
+        else:
+            assert np.all((formed[broke] >= t0 - 1e-12 * t1) & (formed[broke] <= t1 * (1 + 1e-12))), k
+        held = ~broke & ~fresh
+        assert np.all(formed[held] == prev[held, 3]), k    # the time it formed stays
+        assert np.all(formed <= t1 * (1 + 1e-12) + 1e-12), k    # no negative age
+        assert np.all(cur[:, 2] >= t1 * (1 - 1e-12)), k    # run-out times ahead of the clock
+        renewed += broke.sum()
+        prev = cur
+    assert renewed > 480 and fresh_steps > 480 * 10    # many lives, first lives checked

@@ -136,6 +136,62 @@ void ContactModel::start_life(double *st, uint32_t off) const
   st[CT_XS_LOW] = st[CS_THRESHOLD];
 }
 
+/* ----------------------------------------------------------------------
+   the stored form of a thermal row (eq_contact.h).  The budget is counted
+   down while a bound with a rate > 0 holds: the engine uses it only there
+   (thin()), and every change of the bound or its rate is the engine's, in
+   engine form, after which from_engine() sets the run-out time anew
+------------------------------------------------------------------------- */
+
+StoredForm to_engine(double *st, double t)
+{
+  StoredForm w;
+  w.t = t;
+  w.formed = st[CT_FORMED];
+  w.runout = st[CT_RUNOUT];
+  w.held = st[CT_HELD];
+  w.nbreak = st[CS_NBREAK];
+  w.threshold = st[CS_THRESHOLD];
+  w.wait = st[CT_WAIT];
+  w.candidate = st[CT_CANDIDATE];
+  w.rate = st[CT_BOUND_RATE];
+  w.bound = st[CT_BOUND_S];
+  // a waiting contact is of age 0 until it re-forms (as advance() keeps it)
+  w.age = w.wait > 0.0 ? 0.0 : std::max(0.0, t - w.formed);
+  w.budget = w.runout < NEVER ? std::max(0.0, (w.runout - t) * w.rate) : w.held;
+  st[CT_AGE] = w.age;
+  st[CT_BUDGET] = w.budget;
+  return w;
+}
+
+void from_engine(double *st, double t, const StoredForm &was)
+{
+  const double age = st[CT_AGE], budget = st[CT_BUDGET];
+  const bool waiting = st[CT_WAIT] > 0.0;
+  const bool life = st[CS_NBREAK] == was.nbreak && st[CS_THRESHOLD] == was.threshold &&
+      waiting == (was.wait > 0.0);
+  st[CT_FORMED] = life ? was.formed : waiting ? t + st[CT_WAIT] : t - age;
+  if (life && st[CT_CANDIDATE] == was.candidate && st[CT_BOUND_RATE] == was.rate &&
+      st[CT_BOUND_S] == was.bound) {
+    st[CT_RUNOUT] = was.runout;
+    st[CT_HELD] = was.held;
+    return;
+  }
+  st[CT_HELD] = budget;
+  const double rate = st[CT_BOUND_RATE];
+  const double out = st[CT_BOUND_S] >= 0.0 && rate > 0.0 ? t + budget / rate : NEVER;
+  st[CT_RUNOUT] = out < NEVER ? out : NEVER;
+}
+
+void from_engine(double *st, double t)
+{
+  StoredForm none;    // NaN differs from every value: everything is set anew
+  none.t = none.formed = none.runout = none.held = NAN;
+  none.nbreak = none.threshold = none.wait = none.candidate = none.rate = none.bound = NAN;
+  none.age = none.budget = NAN;
+  from_engine(st, t, none);
+}
+
 void ContactModel::new_run(double *st) const
 {
   // no bound for a contact not attached (quick_attached()), whatever wrote the row
@@ -609,15 +665,17 @@ double ContactModel::resolve(double *st, uint64_t tag, double s, double tol, lon
 /* ---------------------------------------------------------------------- */
 
 namespace {
-// over its threshold in the field h (the breaking test of every round)
-inline bool over(const ContactModel &model, const double *st, double h, double tol)
+// over its threshold in the field h (the breaking test of every round);
+// clock: NaN for a row in engine form, else the time of a stored row
+inline bool over(const ContactModel &model, const double *st, double h, double tol, double clock)
 {
   const double th0 = st[CS_THRESHOLD];
   if (th0 <= 0.0 || model.waiting(st)) return false;
   // below x_s0, below the aged threshold too (no A(age) to evaluate)
   if (std::fabs(st[CS_STRETCH] + h / st[CS_STIFFNESS]) < th0 - ContactModel::tolerance(st, tol))
     return false;
-  const double th = model.threshold_now(st);
+  const double th =
+      std::isnan(clock) ? model.threshold_now(st) : model.threshold_stored(st, clock);
   const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
   return !(std::fabs(e) < th - ContactModel::tolerance(st, tol));
 }
@@ -634,9 +692,10 @@ inline bool over_plain(const double *st, double h)
 }
 
 template <bool PLAIN>
-inline bool over_as(const ContactModel &model, const double *st, double h, double tol)
+inline bool over_as(const ContactModel &model, const double *st, double h, double tol,
+                    double clock)
 {
-  return PLAIN ? over_plain(st, h) : over(model, st, h, tol);
+  return PLAIN ? over_plain(st, h) : over(model, st, h, tol, clock);
 }
 
 // the contacts over their thresholds at the start of a round, in the
@@ -645,21 +704,21 @@ inline bool over_as(const ContactModel &model, const double *st, double h, doubl
 template <bool PLAIN>
 void candidates_as(const ContactModel &model, const double *const *rows, const int *members,
                    int nmembers, double tol, const AvalancheField &f, bool all,
-                   const double *thermal, std::vector<int> &list)
+                   const double *thermal, double clock, std::vector<int> &list)
 {
   list.clear();
   if (all || !f.changed) {
     for (int m = 0; m < nmembers; ++m) {
       const int i = members[m];
       if ((!PLAIN && thermal && !std::isnan(thermal[i])) ||
-          over_as<PLAIN>(model, rows[i], f.h[i], tol))
+          over_as<PLAIN>(model, rows[i], f.h[i], tol, clock))
         list.push_back(i);
     }
     return;
   }
   for (int m = 0; m < f.nchanged; ++m) {
     const int i = f.changed[m];
-    if (over_as<PLAIN>(model, rows[i], f.h[i], tol)) list.push_back(i);
+    if (over_as<PLAIN>(model, rows[i], f.h[i], tol, clock)) list.push_back(i);
   }
   std::sort(list.begin(), list.end());
   list.erase(std::unique(list.begin(), list.end()), list.end());
@@ -667,19 +726,21 @@ void candidates_as(const ContactModel &model, const double *const *rows, const i
 
 void candidates(const ContactModel &model, const double *const *rows, const int *members,
                 int nmembers, double tol, const AvalancheField &f, bool all, const double *thermal,
-                std::vector<int> &list)
+                double clock, std::vector<int> &list)
 {
   if (tol == 0.0 && !model.thermal_active() && !thermal)
-    candidates_as<true>(model, rows, members, nmembers, tol, f, all, nullptr, list);
+    candidates_as<true>(model, rows, members, nmembers, tol, f, all, nullptr, clock, list);
   else
-    candidates_as<false>(model, rows, members, nmembers, tol, f, all, thermal, list);
+    candidates_as<false>(model, rows, members, nmembers, tol, f, all, thermal, clock, list);
 }
 }    // namespace
 
 AvalancheResult avalanche(const ContactModel &model, double *const *rows, const int *members,
                           int nmembers, double tol, AvalancheHooks &hooks, std::vector<int> &list,
-                          std::vector<double> &ds, const double *thermal, const double *thermal_age)
+                          std::vector<double> &ds, const double *thermal, const double *thermal_age,
+                          double clock)
 {
+  const bool stored = !std::isnan(clock) && model.thermal_active();
   AvalancheResult res;
   list.reserve(nmembers);
   AvalancheField f = hooks.field();
@@ -688,7 +749,8 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
     // the order of their rows, whichever candidates were tested
     // (the thermal breaks of the step in the first round only)
     const double *hot = res.rounds == 0 ? thermal : nullptr;
-    candidates(model, rows, members, nmembers, tol, f, res.rounds == 0, hot, list);
+    candidates(model, rows, members, nmembers, tol, f, res.rounds == 0, hot,
+               stored ? clock : NAN, list);
     // their breaks (this rank's own contacts: nothing global yet), and
     // whether an incremental field can follow them; then the round's
     // counts over all ranks, in one reduction
@@ -705,8 +767,11 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
       const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
       const double s_old = st[CS_STRETCH];
       const bool th = hot && !std::isnan(hot[i]);
+      StoredForm was;
+      if (stored) was = to_engine(st, clock);
       ds[i] = model.break_once(st, hooks.tag(i), e, h, f.k[i], th ? hot[i] : NAN,
                                th ? thermal_age[i] : 0.0) - s_old;
+      if (stored) from_engine(st, clock, was);
       if (!change_followable(ds[i], st[CS_STRETCH])) ++sums[1];
       if (leave && st[CS_THRESHOLD] > 0.0 && !model.waiting(st)) ++sums[1];
     }

@@ -97,12 +97,49 @@ enum ThermalColumn : int {
   // a lower bound of the current threshold x_s0 A(age) (A >= 1 and grows
   // with age): x_s0 at formation
   CT_XS_LOW,
+  CT_HELD,    // stored form: the budget while it is not counted down (see below)
   CT_NCOL
 };
 
-// the width of the thermal row before thinning (a restart file of that
-// layout cannot be continued)
-constexpr int CT_NCOL_HAZARD_BUDGET = 16;
+// the stored form of a thermal row (fix eq/contacts' per-atom state
+// between its calls into this engine): the budget and the age as times on
+// a clock the owner keeps, so that a step that keeps a contact within its
+// bound writes neither (stored_quick()).  The engine's functions take rows
+// in engine form: to_engine() before a call, from_engine() after it.
+enum StoredColumn : int {
+  // the time at which the budget runs out at the bound's rate, while a
+  // bound with a rate > 0 counts it down (|s| <= CT_BOUND_S: time spent
+  // within the bound uses it); NEVER otherwise (the budget is CT_HELD)
+  CT_RUNOUT = CT_BUDGET,
+  // the time at which the contact formed (age = clock - this); for one
+  // that waits to re-form, the time at which it re-forms
+  CT_FORMED = CT_AGE
+};
+// CT_RUNOUT of a budget that is not counted down (finite: restart data)
+constexpr double NEVER = 1.0e308;
+
+// the width of the thermal row with the budget and the age in engine form
+// between steps (a restart file of that layout cannot be continued)
+constexpr int CT_NCOL_BUDGET_AGE = 15;
+
+// what to_engine() found and made of a stored row at time t
+struct StoredForm {
+  double t, formed, runout, held;                        // the stored times
+  double nbreak, threshold, wait, candidate, rate, bound;    // the life and its bound
+  double age, budget;                                    // as made
+};
+// a thermal row from stored to engine form at time t
+StoredForm to_engine(double *st, double t);
+// back to stored form at time t (the end of what the engine did).  The
+// formation time changes only with a new life (a break, a formation, the
+// end of a wait), the run-out time only with a new bound, rate or
+// candidate: between those the engine's age and budget moved with the
+// clock alone, so that a contact's stored times do not depend on when it
+// was converted (they keep their bits)
+void from_engine(double *st, double t, const StoredForm &was);
+// a row the engine made (no stored form before: a contact formed now)
+void from_engine(double *st, double t);
+
 
 // one step of a contact with temperature, aging or delays
 struct ThermalStepResult {
@@ -166,6 +203,12 @@ class ContactModel {
   {
     return aging_on ? st[CS_THRESHOLD] * thermal.factor(st[CT_AGE]) : st[CS_THRESHOLD];
   }
+  // threshold_now() of an attached contact's row in stored form at time t
+  double threshold_stored(const double *st, double t) const
+  {
+    return aging_on ? st[CS_THRESHOLD] * thermal.factor(std::max(0.0, t - st[CT_FORMED]))
+                    : st[CS_THRESHOLD];
+  }
 
   // interacting contacts at T > 0 (no delay): the thermal part of one time
   // step dt of an attached contact whose effective stretch goes linearly
@@ -197,6 +240,28 @@ class ContactModel {
     }
     st[CT_AGE] += dt;
     return true;
+  }
+
+  // quick_attached() of a row in stored form, the step ending at time
+  // t_end on its clock: the same choice (to rounding: the budget runs out
+  // at a time instead of after a sum of decrements), and only the stretch
+  // is written (the contact ages and uses its budget as the clock goes on)
+  template <bool THERMAL> static bool stored_quick(double *st, double m, double t_end)
+  {
+    const double a = std::fabs(m);
+    if (!(a < st[CT_XS_LOW])) return false;
+    if (THERMAL && !(a <= st[CT_BOUND_S] && t_end < st[CT_RUNOUT])) return false;
+    st[CS_STRETCH] = m;
+    return true;
+  }
+  // quick_probe() of a row in stored form (it writes nothing)
+  template <bool THERMAL>
+  static bool stored_quick_probe(const double *st, double e0, double e1, double t_end)
+  {
+    const double a = std::fabs(e1);
+    if (!(a < st[CT_XS_LOW])) return false;
+    return !THERMAL ||
+        (a <= st[CT_BOUND_S] && std::fabs(e0) <= st[CT_BOUND_S] && t_end < st[CT_RUNOUT]);
   }
 
   // without interaction: every break of one contact within a step, until
@@ -451,11 +516,13 @@ struct AvalancheResult {
 // ds: scratch (ds indexed by row).  thermal (by row, or nullptr): not
 // NaN for a contact that broke thermally within the step (ContactModel::
 // probe()) where its effective stretch was thermal[i], its new life then
-// of age thermal_age[i]: it breaks in the first round, there.
+// of age thermal_age[i]: it breaks in the first round, there.  clock: NaN
+// for rows in engine form; the time of rows in stored form (thermal rows
+// of fix eq/contacts: see to_engine()), which stay in it
 AvalancheResult avalanche(const ContactModel &model, double *const *rows, const int *members,
                           int nmembers, double tol, AvalancheHooks &hooks, std::vector<int> &list,
                           std::vector<double> &ds, const double *thermal = nullptr,
-                          const double *thermal_age = nullptr);
+                          const double *thermal_age = nullptr, double clock = NAN);
 
 // an avalanche may take at most this many rounds
 constexpr int AVALANCHE_MAX_ROUNDS = 100000;
