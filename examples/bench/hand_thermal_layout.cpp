@@ -4,17 +4,20 @@
 
    The common step is the step of an attached contact that stays below
    its threshold's lower bound, within its rate bound, and whose budget
-   is not used up (ContactModel::quick_attached()).  Each loop below does
+   is not used up (ContactModel::quick_attached(), since stop 47
+   stored_quick()).  Each loop below does
    that step for N contacts (no breaks): the unwrapped coordinate from x
    and the image flags, the stretch, the tests, the stretch and the force
    stored, the force into f, the four sums.  The layouts:
 
      T = 0        the athermal row, CS_NCOL = 7 doubles (scan()'s work)
-     thermal      the thermal row as fix eq/contacts keeps it today, CT_NCOL
-                  = 15 doubles; the budget and the age written every step
-     read-only    the same row, the budget and age not written: the test
-                  is t < a run-out time (the budget as the time at which it
-                  runs out, the age as a formation time)
+     thermal      the thermal row as fix eq/contacts kept it up to stop 46,
+                  CT_NCOL = 15 doubles; the budget and the age written
+                  every step
+     read-only    the same row as the fix keeps it since stop 47 (the
+                  stored form): the budget and age not written, the test
+                  is t < the run-out time (the budget as the time at which
+                  it runs out, the age as a formation time)
      hot 9        only what the step touches, 9 doubles (S F K A, the lower
                   bound, the bound's stretch and rate, budget, age)
      hot 7 r/o    the same without the writes: 7 doubles (S F K A, the
@@ -123,6 +126,7 @@ struct Today {
   static constexpr bool WRITES = true;
 };
 struct TodayReadOnly : Today {
+  static constexpr int BUDGET = CT_RUNOUT;
   static constexpr bool WRITES = false;
 };
 struct Hot9Row {
@@ -187,11 +191,11 @@ int main(int argc, char **argv)
   c.image.assign(n, IMGMAX << IMGBITS);
   // contacts 0.1 behind their atoms: stretch 0.1, thresholds 1 (lower
   // bound 0.75, the bound's stretch 0.9), budgets that never run out
-  std::vector<double> r0(n * std::size_t(CS_NCOL)), rt(n * std::size_t(CT_NCOL)),
-      h9(n * std::size_t(H9)), h7(n * std::size_t(H7));
+  std::vector<double> r0(n * std::size_t(CS_NCOL)), rt(n * std::size_t(Today::W)),
+      ro(n * std::size_t(CT_NCOL)), h9(n * std::size_t(H9)), h7(n * std::size_t(H7));
   for (int i = 0; i < n; i++) {
     c.x[3 * i] = 0.01 * i;
-    double *a = &r0[i * std::size_t(CS_NCOL)], *b = &rt[i * std::size_t(CT_NCOL)];
+    double *a = &r0[i * std::size_t(CS_NCOL)], *b = &rt[i * Today::W];
     a[CS_THRESHOLD] = 1.0;
     a[CS_STIFFNESS] = 1.0;
     a[CS_ANCHOR] = 0.01 * i - 0.1;
@@ -200,6 +204,7 @@ int main(int argc, char **argv)
     b[CT_BOUND_S] = 0.9;
     b[CT_XS_LOW] = 0.75;
     b[CT_BUDGET] = 1e300;
+    std::copy(b, b + Today::W, &ro[i * std::size_t(CT_NCOL)]);    // (CT_RUNOUT: 1e300)
     double *p = &h9[i * std::size_t(H9)], *q = &h7[i * std::size_t(H7)];
     p[H_K] = q[R_K] = 1.0;
     p[H_A] = q[R_A] = a[CS_ANCHOR];
@@ -208,7 +213,6 @@ int main(int argc, char **argv)
     p[H_RATE] = 1e-3;
     p[H_BUDGET] = q[R_RUNOUT] = 1e300;
   }
-  std::vector<double> ro(rt);
   const char *names[] = {"T = 0", "thermal", "read-only", "hot 9", "hot 7 r/o"};
   std::vector<double> best(5, HUGE_VAL);
   double sink = 0.0;

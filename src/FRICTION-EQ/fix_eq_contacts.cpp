@@ -1335,10 +1335,8 @@ void FixEQContacts::check_restored(int i)
     why = fmt::format("threshold {} with stiffness {}", th, st[CS_STIFFNESS]);
   else if (!(nb >= 0.0 && nb <= 9007199254740992.0 && nb == std::floor(nb)))
     why = fmt::format("break count {}", nb);
-  if (why.empty() && model->thermal_active() &&
-      !(st[CT_HELD] >= 0.0 && st[CT_WAIT] >= 0.0 && st[CT_RUNOUT] >= 0.0))
-    why = fmt::format("hazard budget {}, delay left {}, run-out time {}", st[CT_HELD], st[CT_WAIT],
-                      st[CT_RUNOUT]);
+  if (why.empty() && model->thermal_active() && !(st[CT_WAIT] >= 0.0))
+    why = fmt::format("delay left {}", st[CT_WAIT]);
   if (why.empty() && model->thermal_active() &&
       !(st[CT_BOUND_RATE] >= 0.0 && st[CT_CANDIDATE] >= 0.0 &&
         st[CT_CANDIDATE] == std::floor(st[CT_CANDIDATE]) && st[CT_XS_LOW] >= 0.0))
@@ -1353,12 +1351,12 @@ void FixEQContacts::check_restored(int i)
 // only where the file holds another layout of this fix
 std::string FixEQContacts::layout_hint(long stored) const
 {
-  if (stored == feq::CT_NCOL_BUDGET_AGE)
+  if (stored == feq::CT_NCOL_HAZARD_BUDGET)
     return fmt::format("the file was written by an earlier version of the package, whose contacts "
-                       "with the keywords {} kept {} values (their hazard budgets and ages in "
-                       "another form; now {} values): such a file cannot be continued; start the "
-                       "run afresh, or continue it with that version",
-                       THERMAL_KEYWORDS, feq::CT_NCOL_BUDGET_AGE, static_cast<int>(CT_NCOL));
+                       "with the keywords {} kept {} values (thermal breaking against a hazard "
+                       "budget; now sampled by thinning, {} values): such a file cannot be "
+                       "continued; start the run afresh, or continue it with that version",
+                       THERMAL_KEYWORDS, feq::CT_NCOL_HAZARD_BUDGET, static_cast<int>(CT_NCOL));
   if (stored != CS_NCOL && stored != CT_NCOL) return "";
   return fmt::format("the keywords {} add {} values per contact; give one of them in both the run "
                      "that wrote the file and this one, or in neither",

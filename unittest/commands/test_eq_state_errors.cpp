@@ -257,9 +257,9 @@ TEST_F(EQState, ContactsRestartAcrossTheThermalLayout)
     command("clear");
     command("read_restart eq_state_t.restart");
   });
-  TEST_FAILURE(".*ERROR.*: Fix c eq/contacts: the restart file holds 16 values per atom "
+  TEST_FAILURE(".*ERROR.*: Fix c eq/contacts: the restart file holds 15 values per atom "
                "for this fix, it expects 7 .*the keywords thermal, barrier, aging, delay, rest "
-               "add 9 values per contact.*",
+               "add 8 values per contact.*",
                command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25"););
   HIDE_OUTPUT([&] {
     command("clear");

@@ -1572,7 +1572,7 @@ TEST(StoredForm, BudgetAndAgeThroughTheClock)
   const double budget = r[CT_BUDGET];
   r[CT_AGE] = 1.5;
   from_engine(r.data(), 10.0);
-  EXPECT_EQ(r[CT_RUNOUT], NEVER);
+  EXPECT_EQ(r[CT_RUNOUT], -budget);    // not counted down: minus the budget
   EXPECT_EQ(r[CT_FORMED], 8.5);
   StoredForm w = to_engine(r.data(), 30.0);
   EXPECT_EQ(w.budget, budget);    // held
@@ -1601,7 +1601,16 @@ TEST(StoredForm, BudgetAndAgeThroughTheClock)
   r[CT_BOUND_S] = ContactModel::NO_BOUND;
   from_engine(r.data(), 40.0, w);
   EXPECT_EQ(r[CT_FORMED], 44.0);
-  EXPECT_EQ(r[CT_RUNOUT], NEVER);
+  EXPECT_EQ(r[CT_RUNOUT], -0.7);
+  // a budget of 0 not counted down (-0.0) is told from a run-out at 0
+  r[CT_BUDGET] = 0.0;
+  r[CT_AGE] = 0.0;
+  from_engine(r.data(), 40.0);
+  EXPECT_TRUE(std::signbit(r[CT_RUNOUT]));
+  EXPECT_EQ(to_engine(r.data(), 41.0).budget, 0.0);
+  r[CT_BUDGET] = 0.7;
+  r[CT_AGE] = 0.0;
+  from_engine(r.data(), 40.0);
   r[CT_WAIT] -= 1.0;    // a step of 1 (quick_wait())
   w = to_engine(r.data(), 41.0);
   EXPECT_EQ(w.age, 0.0);

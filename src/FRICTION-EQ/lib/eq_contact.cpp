@@ -149,7 +149,6 @@ StoredForm to_engine(double *st, double t)
   w.t = t;
   w.formed = st[CT_FORMED];
   w.runout = st[CT_RUNOUT];
-  w.held = st[CT_HELD];
   w.nbreak = st[CS_NBREAK];
   w.threshold = st[CS_THRESHOLD];
   w.wait = st[CT_WAIT];
@@ -158,7 +157,7 @@ StoredForm to_engine(double *st, double t)
   w.bound = st[CT_BOUND_S];
   // a waiting contact is of age 0 until it re-forms (as advance() keeps it)
   w.age = w.wait > 0.0 ? 0.0 : std::max(0.0, t - w.formed);
-  w.budget = w.runout < NEVER ? std::max(0.0, (w.runout - t) * w.rate) : w.held;
+  w.budget = std::signbit(w.runout) ? -w.runout : std::max(0.0, (w.runout - t) * w.rate);
   st[CT_AGE] = w.age;
   st[CT_BUDGET] = w.budget;
   return w;
@@ -174,19 +173,17 @@ void from_engine(double *st, double t, const StoredForm &was)
   if (life && st[CT_CANDIDATE] == was.candidate && st[CT_BOUND_RATE] == was.rate &&
       st[CT_BOUND_S] == was.bound) {
     st[CT_RUNOUT] = was.runout;
-    st[CT_HELD] = was.held;
     return;
   }
-  st[CT_HELD] = budget;
   const double rate = st[CT_BOUND_RATE];
-  const double out = st[CT_BOUND_S] >= 0.0 && rate > 0.0 ? t + budget / rate : NEVER;
-  st[CT_RUNOUT] = out < NEVER ? out : NEVER;
+  const double out = st[CT_BOUND_S] >= 0.0 && rate > 0.0 ? t + budget / rate : HUGE_VAL;
+  st[CT_RUNOUT] = std::isfinite(out) ? out : -budget;
 }
 
 void from_engine(double *st, double t)
 {
   StoredForm none;    // NaN differs from every value: everything is set anew
-  none.t = none.formed = none.runout = none.held = NAN;
+  none.t = none.formed = none.runout = NAN;
   none.nbreak = none.threshold = none.wait = none.candidate = none.rate = none.bound = NAN;
   none.age = none.budget = NAN;
   from_engine(st, t, none);

@@ -97,7 +97,6 @@ enum ThermalColumn : int {
   // a lower bound of the current threshold x_s0 A(age) (A >= 1 and grows
   // with age): x_s0 at formation
   CT_XS_LOW,
-  CT_HELD,    // stored form: the budget while it is not counted down (see below)
   CT_NCOL
 };
 
@@ -109,22 +108,21 @@ enum ThermalColumn : int {
 enum StoredColumn : int {
   // the time at which the budget runs out at the bound's rate, while a
   // bound with a rate > 0 counts it down (|s| <= CT_BOUND_S: time spent
-  // within the bound uses it); NEVER otherwise (the budget is CT_HELD)
+  // within the bound uses it), >= 0; otherwise minus the budget (a sign
+  // bit set: -0.0 for a budget of 0), which no time changes
   CT_RUNOUT = CT_BUDGET,
   // the time at which the contact formed (age = clock - this); for one
   // that waits to re-form, the time at which it re-forms
   CT_FORMED = CT_AGE
 };
-// CT_RUNOUT of a budget that is not counted down (finite: restart data)
-constexpr double NEVER = 1.0e308;
-
-// the width of the thermal row with the budget and the age in engine form
-// between steps (a restart file of that layout cannot be continued)
-constexpr int CT_NCOL_BUDGET_AGE = 15;
+// the width of the thermal row before thinning (a restart file of that
+// layout cannot be continued; one with the budget and the age in engine
+// form between steps, the same width as now, is known by its fix's record)
+constexpr int CT_NCOL_HAZARD_BUDGET = 16;
 
 // what to_engine() found and made of a stored row at time t
 struct StoredForm {
-  double t, formed, runout, held;                        // the stored times
+  double t, formed, runout;                              // the stored times
   double nbreak, threshold, wait, candidate, rate, bound;    // the life and its bound
   double age, budget;                                    // as made
 };
