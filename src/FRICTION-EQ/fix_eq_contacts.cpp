@@ -366,6 +366,11 @@ void FixEQContacts::init()
   for (int i = 0; i < modify->nfix; i++)
     for (const char *writer : {"^gcmc", "^gemc", "^charge/regulation", "^SRP", "^bond/react"})
       if (utils::strmatch(modify->fix[i]->style, writer)) mask_writer = 1;
+  // thermal rows keep times on the clock, which runs forward only
+  if (model->thermal_active() && (update->dt < 0.0 || clock < 0.0))
+    error->all(FLERR, "Fix {} eq/contacts: the keywords {} need time to run forward: timestep {} "
+                      "(the fix's clock {}); use a positive timestep", id, THERMAL_KEYWORDS,
+               update->dt, clock);
   // the tolerance of the breaking test: that of a driver that lands the
   // slider exactly on the next break (fix eq/quasistatic), else none
   break_tol = 0.0;
@@ -1300,7 +1305,7 @@ void FixEQContacts::restart(char *buf)
     error->all(FLERR, "Fix {} eq/contacts: the restart file's record of this fix is unusable: "
                       "breaks {} and seed {} are not counts (a corrupt file)", id, list[0], list[1]);
   const double restored = clockless ? 0.0 : list[2];
-  if (!std::isfinite(restored) || restored < 0.0)
+  if (!std::isfinite(restored))
     error->all(FLERR, "Fix {} eq/contacts: the restart file's record of this fix is unusable: "
                       "clock {} (a corrupt file)", id, restored);
   // contacts formed at the fix's definition (atoms without stored rows)
@@ -1335,8 +1340,13 @@ void FixEQContacts::check_restored(int i)
     why = fmt::format("threshold {} with stiffness {}", th, st[CS_STIFFNESS]);
   else if (!(nb >= 0.0 && nb <= 9007199254740992.0 && nb == std::floor(nb)))
     why = fmt::format("break count {}", nb);
-  if (why.empty() && model->thermal_active() && !(st[CT_WAIT] >= 0.0))
-    why = fmt::format("delay left {}", st[CT_WAIT]);
+  // (a budget is counted down only under a bound with a rate; otherwise
+  // it is kept as its negative)
+  if (why.empty() && model->thermal_active() &&
+      !(st[CT_WAIT] >= 0.0 &&
+        (std::signbit(st[CT_RUNOUT]) || (st[CT_BOUND_S] >= 0.0 && st[CT_BOUND_RATE] > 0.0))))
+    why = fmt::format("delay left {}, budget run-out {} with rate bound {} up to {}", st[CT_WAIT],
+                      st[CT_RUNOUT], st[CT_BOUND_RATE], st[CT_BOUND_S]);
   if (why.empty() && model->thermal_active() &&
       !(st[CT_BOUND_RATE] >= 0.0 && st[CT_CANDIDATE] >= 0.0 &&
         st[CT_CANDIDATE] == std::floor(st[CT_CANDIDATE]) && st[CT_XS_LOW] >= 0.0))

@@ -435,6 +435,23 @@ TEST_F(EQState, OutputsBeforeTheFirstRun)
 
 TEST_F(EQState, ForbiddenCombinations)
 {
+  // the thermal keywords keep times on the fix's clock: time runs forward
+  HIDE_OUTPUT([&] {
+    command("timestep -0.01");
+    command("fix c all eq/contacts 1.0 5 threshold uniform 0.75 1.25 thermal 0.1 1.0 1.0");
+    command("fix m all move linear 0.1 0.0 0.0 units box");
+  });
+  TEST_FAILURE(".*ERROR: Fix c eq/contacts: the keywords thermal, barrier, aging, delay, rest "
+               "need time to run forward: timestep -0.01.*",
+               command("run 1 post no"););
+  HIDE_OUTPUT([&] {
+    command("unfix m");
+    command("timestep 0.01");
+    command("fix m all move linear 0.1 0.0 0.0 units box");
+    command("run 1 post no");
+    command("unfix m");
+    command("unfix c");
+  });
   HIDE_OUTPUT([&] {
     command(CONTACTS);
     command("fix q all eq/quasistatic c");

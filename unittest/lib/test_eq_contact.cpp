@@ -1676,7 +1676,8 @@ TEST(StoredForm, ReentryIsANewLife)
 
 // the avalanche on rows in stored form (its clock given) breaks what it
 // breaks on the same rows in engine form: the aged thresholds from the
-// formation times, and the new lives' times on the clock
+// formation times, and the new lives' times on the clock (a thermal
+// break of the step: its new life already 0.3 old)
 TEST(StoredForm, AvalancheOfStoredRows)
 {
   ThermalSpec t = theta_spec(0.05);
@@ -1711,10 +1712,14 @@ TEST(StoredForm, AvalancheOfStoredRows)
     fb.recompute();
     std::vector<int> members(n), list;
     for (int i = 0; i < n; ++i) members[i] = i;
-    std::vector<double> ds;
-    const AvalancheResult x = avalanche(m, ra.data(), members.data(), n, 0.0, fa, list, ds);
-    const AvalancheResult y =
-        avalanche(m, rb.data(), members.data(), n, 0.0, fb, list, ds, nullptr, nullptr, clock);
+    std::vector<double> ds, hot(n, NAN), hot_age(n, 0.0);
+    const int j = trial % n;
+    hot[j] = 0.5 * a[j][CS_STRETCH];
+    hot_age[j] = 0.3;
+    const AvalancheResult x =
+        avalanche(m, ra.data(), members.data(), n, 0.0, fa, list, ds, hot.data(), hot_age.data());
+    const AvalancheResult y = avalanche(m, rb.data(), members.data(), n, 0.0, fb, list, ds,
+                                        hot.data(), hot_age.data(), clock);
     ASSERT_EQ(x.size, y.size) << trial;
     ASSERT_EQ(x.rounds, y.rounds) << trial;
     broke += x.size;
@@ -1724,6 +1729,7 @@ TEST(StoredForm, AvalancheOfStoredRows)
       EXPECT_NEAR(a[i][CS_STRETCH], b[i][CS_STRETCH], 1e-12) << trial << " " << i;
       EXPECT_NEAR(to_engine(b[i].data(), clock).age, a[i][CT_AGE], 1e-12) << trial << " " << i;
     }
+    EXPECT_GE(a[j][CS_NBREAK], 1.0);    // the thermal break
   }
   EXPECT_GT(broke, 20);    // breaks, and contacts that aging kept from breaking
   EXPECT_GT(aged, 40);
