@@ -418,16 +418,13 @@ void FixEQContacts::mark_departed()
 {
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
-  const bool stored = model->thermal_active();
   for (int i = 0; i < nlocal; i++) {
     if (mask[i] & groupbit) continue;
-    if (!stored) {
-      model->depart(state[i]);
-      continue;
-    }
-    const feq::StoredForm was = feq::to_engine(state[i], clock);
-    model->depart(state[i]);
-    feq::from_engine(state[i], clock, was);
+    double *st = state[i];
+    if (model->thermal_active())
+      feq::engine_call(st, clock, clock, [&] { model->depart(st); });
+    else
+      model->depart(st);
   }
 }
 
@@ -773,11 +770,10 @@ bool FixEQContacts::settle_thermal_scan(int i, const EQUtil::Unwrap &unwrap, dou
     st[CS_FORCE] = 0.0;
     return false;
   }
-  const feq::StoredForm was = feq::to_engine(st, clock);
-  const bool on = stepping && !(st[CT_WAIT] > 0.0) ? step_attached(st, i, unwrap, xu, d, dt, nb)
-                                                    : settle_thermal(i, unwrap, allow_breaks, dt, nb);
-  feq::from_engine(st, clock + dt, was);
-  return on;
+  return feq::engine_call(st, clock, clock + dt, [&] {
+    return stepping && !(st[CT_WAIT] > 0.0) ? step_attached(st, i, unwrap, xu, d, dt, nb)
+                                            : settle_thermal(i, unwrap, allow_breaks, dt, nb);
+  });
 }
 
 // a contact off the common step: formed, its step taken (or held), its
@@ -1000,13 +996,11 @@ void FixEQContacts::new_run()
 {
   const int *const mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit) || !(state[i][CS_THRESHOLD] > 0.0)) continue;
-    const feq::StoredForm was = feq::to_engine(state[i], clock);
-    model->new_run(state[i]);
-    feq::from_engine(state[i], clock, was);
+    double *st = state[i];
+    if ((mask[i] & groupbit) && st[CS_THRESHOLD] > 0.0)
+      feq::engine_call(st, clock, clock, [&] { model->new_run(st); });
   }
 }
-
 
 /* ----------------------------------------------------------------------
    formation delays with the field (ContactModel::leaves_field()): a
@@ -1040,9 +1034,9 @@ void FixEQContacts::count_down(double dt)
                         "(numerical instability: check the timestep, the forces and the "
                         "integrator)", id, atom->tag[i], m);
     if (model->quick_wait(st, m, dt)) continue;    // its anchor: stretches()
-    const feq::StoredForm was = feq::to_engine(st, clock);
-    st[CS_ANCHOR] = xu - model->rejoin(st, m, dt);
-    feq::from_engine(st, clock + dt, was);
+    const double s =
+        feq::engine_call(st, clock, clock + dt, [&] { return model->rejoin(st, m, dt); });
+    st[CS_ANCHOR] = xu - s;
     joins.push_back(i);
   }
 }
@@ -1114,10 +1108,9 @@ void FixEQContacts::thermal_stage(const feq::AvalancheField &f, double dt)
     if (hot ? ContactModel::stored_quick_probe<true>(st, eprev[i], e1, t_end)
             : ContactModel::stored_quick_probe<false>(st, eprev[i], e1, t_end))
       continue;
-    const feq::StoredForm was = feq::to_engine(st, clock);
+    const uint64_t id = static_cast<uint64_t>(tag[i]);
     const ContactModel::ThermalProbe r =
-        model->probe(st, static_cast<uint64_t>(tag[i]), eprev[i], e1, dt);
-    feq::from_engine(st, t_end, was);
+        feq::engine_call(st, clock, t_end, [&] { return model->probe(st, id, eprev[i], e1, dt); });
     if (!r.broke) continue;
     tbreak[i] = eprev[i] + (e1 - eprev[i]) * r.frac;
     tage[i] = (1.0 - r.frac) * dt;

@@ -764,11 +764,11 @@ AvalancheResult avalanche(const ContactModel &model, double *const *rows, const 
       const double e = st[CS_STRETCH] + h / st[CS_STIFFNESS];
       const double s_old = st[CS_STRETCH];
       const bool th = hot && !std::isnan(hot[i]);
-      StoredForm was;
-      if (stored) was = to_engine(st, clock);
-      ds[i] = model.break_once(st, hooks.tag(i), e, h, f.k[i], th ? hot[i] : NAN,
-                               th ? thermal_age[i] : 0.0) - s_old;
-      if (stored) from_engine(st, clock, was);
+      const auto once = [&] {
+        return model.break_once(st, hooks.tag(i), e, h, f.k[i], th ? hot[i] : NAN,
+                                th ? thermal_age[i] : 0.0);
+      };
+      ds[i] = (stored ? engine_call(st, clock, clock, once) : once()) - s_old;
       if (!change_followable(ds[i], st[CS_STRETCH])) ++sums[1];
       if (leave && st[CS_THRESHOLD] > 0.0 && !model.waiting(st)) ++sums[1];
     }

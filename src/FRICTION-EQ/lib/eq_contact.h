@@ -137,6 +137,18 @@ StoredForm to_engine(double *st, double t);
 void from_engine(double *st, double t, const StoredForm &was);
 // a row the engine made (no stored form before: a contact formed now)
 void from_engine(double *st, double t);
+// f(), the engine's work on a stored row st, with st in engine form from
+// time t0 and back in stored form at time t1 (the end of what f did)
+template <class F> decltype(auto) engine_call(double *st, double t0, double t1, F &&f)
+{
+  struct Back {
+    double *st;
+    double t;
+    StoredForm was;
+    ~Back() { from_engine(st, t, was); }
+  } back{st, t1, to_engine(st, t0)};
+  return f();
+}
 
 
 // one step of a contact with temperature, aging or delays
