@@ -138,8 +138,9 @@ void from_engine(double *st, double t, const StoredForm &was);
 // a row the engine made (no stored form before: a contact formed now)
 void from_engine(double *st, double t);
 // f(), the engine's work on a stored row st, with st in engine form from
-// time t0 and back in stored form at time t1 (the end of what f did)
-template <class F> decltype(auto) engine_call(double *st, double t0, double t1, F &&f)
+// time t0 and back in stored form at time t1 (the end of what f did).
+// (C++11: LAMMPS 29 Sep 2021 builds the package with -std=c++11)
+template <class F> auto engine_call(double *st, double t0, double t1, F &&f) -> decltype(f())
 {
   struct Back {
     double *st;
