@@ -522,6 +522,16 @@ void FixEQContacts::post_force_respa(int vflag, int ilevel, int /*iloop*/)
   if (ilevel == ilevel_respa) post_force(vflag);
 }
 
+// the duration of a step of this fix's force evaluations (its r-RESPA
+// level: the time between two of them; fix_modify respa with an inner
+// level evaluates loop times per outer step, each dt/loop long)
+double FixEQContacts::step_dt() const
+{
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    return static_cast<Respa *>(update->integrate)->step[ilevel_respa];
+  return update->dt;
+}
+
 // during minimization the contacts hold (no breaking): the energy is then
 // a smooth function of the positions
 void FixEQContacts::min_post_force(int /*vflag*/)
@@ -557,7 +567,7 @@ void FixEQContacts::apply(bool allow_breaks)
 {
   const EQUtil::Unwrap unwrap(atom, domain, idir);
   long nb = 0;
-  const double dt = in_setup || !allow_breaks ? 0.0 : update->dt;
+  const double dt = in_setup || !allow_breaks ? 0.0 : step_dt();
   try {
     const bool hot = model->thermal_model().params().thermal();
     const bool orthogonal = unwrap.orthogonal();

@@ -171,6 +171,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void record_members(const int *list, int n, bool exact);
   void new_version(const int *list, int n, const double *dq, bool exact, bool members_changed);
   void apply(bool allow_breaks);
+  double step_dt() const;
   template <bool ORTHOGONAL, bool ALL> long scan(const EQUtil::Unwrap &unwrap, bool allow_breaks);
   inline bool attached(const double *st) const;    // defined in the .cpp, used there only
   void check_masks();

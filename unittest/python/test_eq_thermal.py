@@ -375,3 +375,63 @@ def test_formation_times_follow_the_breaks(tmp_path, crossing):
     n = len(prev)
     assert renewed > 2 * n and fresh_steps > 10 * n    # many lives, first lives checked
     assert counted > 0.9 * 400 * n    # almost every contact within a bound, almost always
+
+
+RESPA = """
+units lj
+dimension 2
+atom_style atomic
+boundary p p p
+lattice hex 1.1547005383792515
+region box block 0 10 0 12 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+comm_modify cutoff 0.5
+fix c all eq/contacts 1.0 4711 threshold uniform 0.75 1.25 reform uniform -0.2 0.2 &
+    thermal 0.1 1.0 1.0 aging log 0.2 1.0 delay exp 0.5 crossing exact
+velocity all set 0.05 0.0 0.0 units box
+fix slide all nve
+fix hold all setforce 0.0 0.0 0.0
+timestep ${dt}
+if "${respa} > 0" then "run_style respa 2 2" "fix_modify c respa ${level}"
+variable clock equal f_c[9]
+thermo_style custom step v_clock f_c[3] f_c[4]
+thermo_modify format float %.17g norm no
+thermo ${n}
+dump d all custom ${n} final.dump id f_c[1] f_c[4] f_c[8] f_c[9]
+dump_modify d sort id format float %.17g
+run ${n}
+"""
+
+
+@pytest.mark.parametrize("level", [1, 2])
+def test_respa_level_takes_its_own_step(tmp_path, level):
+    """r-RESPA with 2 levels (loop 2), the slider moved by fix nve with
+    zero forces: at the inner level (fix_modify respa 1) the fix runs at
+    every inner step, each dt/2 long, so that the thermal run (breaks,
+    ages, budgets, delays) is the Verlet run at dt/2 to the last bit; at
+    the outer level (the default) it is the Verlet run at dt.  The clock
+    (global entry 9) is the time run in both.  (An inner level once
+    counted dt per inner step: twice the time.)"""
+    (tmp_path / "in.respa").write_text(RESPA)
+    dt, n = 0.25, 200
+
+    def go(tag, v):
+        d = tmp_path / tag
+        d.mkdir()
+        log = eqtools.run_lammps(tmp_path / "in.respa", v, cwd=d)
+        last = [l.split() for l in log.splitlines() if l.split()[:1] == [str(v["n"])]][-1]
+        atoms = (d / "final.dump").read_text().split("ITEM: ATOMS")[-1].strip().splitlines()[1:]
+        return [float(x) for x in last[1:]], np.array([[float(x) for x in r.split()] for r in atoms])
+
+    inner = level == 1
+    (clock, breaks, att), a = go("respa", {"dt": dt, "respa": 1, "level": level, "n": n})
+    (vclock, vbreaks, vatt), b = go("verlet", {"dt": dt / 2 if inner else dt, "respa": 0,
+                                               "level": level, "n": 2 * n if inner else n})
+    assert abs(clock - n * dt) <= 1e-12 * n * dt and abs(vclock - n * dt) <= 1e-12 * n * dt
+    assert breaks > 240 and (breaks, att) == (vbreaks, vatt)
+    if inner:
+        assert np.array_equal(a, b)
+    else:    # positions moved by two half steps against one whole: rounding
+        assert np.array_equal(a[:, 2], b[:, 2]) and np.allclose(a, b, rtol=1e-9, atol=1e-9)
