@@ -53,6 +53,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 
@@ -65,7 +66,13 @@ namespace {
 // sum of stretches, contacts, breaks since the fix was defined
 enum { SUM_FORCE, SUM_BREAKS, SUM_ATTACHED, SUM_ENERGY, SUM_STRETCH, SUM_COUNT, SUM_TOTAL, NSUM };
 const char *KEYWORDS = "threshold, reform, stiffness, dir, crossing, start, reform_as, avalanches, "
-                       "thermal, barrier, aging, delay, rest";
+                       "peratom, thermal, barrier, aging, delay, rest";
+
+// the columns of a compact row (keyword peratom N > 1): what the common
+// thermal step reads and writes.  LIMIT: the common step holds while
+// |s| < LIMIT and the step ends before RUNOUT (ContactModel::stored_quick()
+// in one test, load_hot())
+enum HotColumn : int { H_ANCHOR, H_STIFFNESS, H_LIMIT, H_RUNOUT, H_STRETCH, H_FORCE, H_NCOL };
 constexpr double NOT_A_CONTACT = std::numeric_limits<double>::quiet_NaN();
 // the bit of group all (Group: group 0; set in the mask of every atom
 // LAMMPS creates, cleared only by commands such as group all subtract)
@@ -128,12 +135,14 @@ struct FixEQContacts::Args {
   feq::DistributionSpec threshold, reform, stiffness;
   feq::ThermalKeywords thermal;
   std::string avfile;
+  int peratom_every = 1;
 };
 
 FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
     FixEQPerAtom(lmp, narg, arg), break_tol(0.0), interacting(0), avfp(nullptr), av_flag(0),
     rounds_last(0), ran(0), in_setup(0), masks_full(0), mask_writer(0), masks_builds(-1),
-    nevaluation(0), nversion(0), chg_from(-1), clock(0.0)
+    nevaluation(0), nversion(0), chg_from(-1), clock(0.0), peratom_every(1), hot_live(0),
+    hot_T(false)
 {
   EQCite::add(lmp);
   name = fmt::format("fix {} eq/contacts", id);
@@ -164,7 +173,14 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   energy_global_flag = 1;
   respa_level_support = 1;
   ilevel_respa = 0;
+  peratom_every = a.peratom_every;
+  hot_T = model->thermal_model().params().thermal();
+  if (peratom_every > 1 && !model->thermal_active())
+    error->all(FLERR, "Fix {} eq/contacts: peratom {} needs thermal rows (keywords {}): the row of "
+                      "athermal contacts is the compact one already; use peratom 1", id,
+               peratom_every, THERMAL_KEYWORDS);
   peratom_setup(model->columns(), model->outputs());
+  peratom_freq = peratom_every;
 
   // relaxed contacts at the current positions (or stretched by R), with
   // their stretches as every evaluation at these positions finds them (x -
@@ -242,6 +258,12 @@ void FixEQContacts::parse(int narg, char **arg, Args &a)
         if (iarg >= args.size()) throw feq::SpecError("avalanches: missing file name");
         a.avfile = args[iarg++];
         av_flag = 1;
+      } else if (kw == "peratom") {
+        if (iarg >= args.size()) throw feq::SpecError("peratom: missing N (steps)");
+        const bigint n = EQUtil::bnumeric(lmp, "Fix eq/contacts: peratom", args[iarg++]);
+        if (n < 1 || n > MAXSMALLINT)
+          throw feq::SpecError("peratom: N must be an integer >= 1 (got " + args[iarg - 1] + ")");
+        a.peratom_every = static_cast<int>(n);
       } else {
         throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
       }
@@ -356,6 +378,10 @@ void FixEQContacts::init()
   if (elastic && count == 1 && pair->compute_flag && elastic->field_source_instance() == instance_me)
     field.set(elastic, pair);
   interacting = field ? 1 : 0;
+  if (field && peratom_every > 1)
+    error->all(FLERR, "Fix {} eq/contacts: peratom {} does not work with pair style eq/elastic "
+                      "(its avalanches read the state rows at every step); use peratom 1", id,
+               peratom_every);
   if (field && utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix eq/contacts with pair style eq/elastic does not support run_style "
                       "respa; allowed: run_style verlet");
@@ -549,6 +575,9 @@ void FixEQContacts::post_run()
   // all subtract may come in between; a run with pre no has no set-up)
   masks_builds = -1;
   if (EQElasticField *f = EQLink::live_pair(field, force)) f->field_report();
+  // between runs the state rows are the whole state (peratom N > 1)
+  if (hot_live) sync_rows();
+  hot_live = 0;
 }
 
 /* ----------------------------------------------------------------------
@@ -572,7 +601,13 @@ void FixEQContacts::apply(bool allow_breaks)
     const bool hot = model->thermal_model().params().thermal();
     const bool orthogonal = unwrap.orthogonal();
     const bool all = orthogonal && masks_skippable();
-    if (model->thermal_active() && all)
+    if (peratom_every > 1) make_hot_live();
+    if (hot_live && all)
+      nb = scan_hot<true, true>(unwrap, allow_breaks, dt);
+    else if (hot_live)
+      nb = orthogonal ? scan_hot<true, false>(unwrap, allow_breaks, dt)
+                      : scan_hot<false, false>(unwrap, allow_breaks, dt);
+    else if (model->thermal_active() && all)
       nb = hot ? scan_thermal<true, true, true>(unwrap, allow_breaks, dt)
                : scan_thermal<true, false, true>(unwrap, allow_breaks, dt);
     else if (model->thermal_active() && orthogonal)
@@ -592,6 +627,8 @@ void FixEQContacts::apply(bool allow_breaks)
   }
   local_sum[SUM_BREAKS] = static_cast<double>(nb);
   clock += dt;
+  // the per-atom output, valid every peratom_every steps and at a set-up
+  if (hot_live && (in_setup || update->ntimestep % peratom_every == 0)) sync_rows();
 }
 
 // returns the number of breaks.  ALL: the fix's group is all and every
@@ -718,6 +755,150 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
   local_breaks_total += nb;
   store_sums(fsum, esum, ssum, natt, ncount);
   return nb;
+}
+
+/* ----------------------------------------------------------------------
+   keyword peratom N > 1: scan_thermal() on compact rows.  The common step
+   reads 6 doubles and writes 2 (stretch and force) where the state row
+   is 15; every other contact goes out of line on its state row, made
+   current first (sync_row()) and copied back after (load_hot()), so that
+   the numbers are scan_thermal()'s to the last bit
+------------------------------------------------------------------------- */
+
+template <bool ORTHOGONAL, bool ALL>
+long FixEQContacts::scan_hot(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks, double dt)
+{
+  const EQUtil::Unwrap unwrap = unwrap_arg;
+  const int *const mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int bit = groupbit;
+  const bool quick = allow_breaks && dt > 0.0;
+  const double t_end = clock + dt;
+  const double reach = unwrap.stretch_reach();
+  double *const rows = hot.data();
+  double *const fd = nlocal > 0 ? atom->f[0] + idir : nullptr;
+  double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = ALL ? nlocal : 0.0;
+  long nb = 0;
+  for (int i = 0; i < nlocal; i++) {
+    if (!ALL) {
+      if (!(mask[i] & bit)) continue;
+      ncount += 1.0;
+    }
+    double *const h = rows + static_cast<std::size_t>(i) * H_NCOL;
+    const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
+    double s = xu - h[H_ANCHOR];
+    const double a = std::fabs(s);
+    const bool common = quick && a < reach && a < h[H_LIMIT] && t_end < h[H_RUNOUT];
+    if (FEQ_UNLIKELY(!common)) {
+      sync_row(i);
+      const bool present = settle_thermal_scan(i, unwrap_arg, xu, allow_breaks, dt, nb);
+      load_hot(i);
+      if (!present) continue;
+      s = h[H_STRETCH];
+    } else {
+      h[H_STRETCH] = s;
+    }
+    const double fc = h[H_STIFFNESS] * s;
+    h[H_FORCE] = fc;
+    fd[3 * i] -= fc;
+    fsum += fc;
+    esum += fc * s;
+    ssum += s;
+    natt += 1.0;
+  }
+  local_breaks_total += nb;
+  store_sums(fsum, esum, ssum, natt, ncount);
+  return nb;
+}
+
+// the next double above b >= 0 (std::nextafter(b, HUGE_VAL) without a call)
+static inline double next_up(double b)
+{
+  uint64_t u;
+  std::memcpy(&u, &b, sizeof(u));
+  ++u;
+  std::memcpy(&b, &u, sizeof(b));
+  return b;
+}
+
+// the compact row of atom i from its state row: stored_quick()'s tests as
+// one bound of |s| (|s| <= b as |s| < the next double above b) and a
+// run-out time (none for T = 0: aging or delays alone)
+void FixEQContacts::load_hot(int i)
+{
+  const double *st = state[i];
+  double *h = &hot[static_cast<std::size_t>(i) * H_NCOL];
+  h[H_ANCHOR] = st[CS_ANCHOR];
+  h[H_STIFFNESS] = st[CS_STIFFNESS];
+  h[H_STRETCH] = st[CS_STRETCH];
+  h[H_FORCE] = st[CS_FORCE];
+  if (hot_T) {
+    h[H_LIMIT] = st[CT_BOUND_S] >= 0.0 ? std::min(st[CT_XS_LOW], next_up(st[CT_BOUND_S])) : -1.0;
+    h[H_RUNOUT] = st[CT_RUNOUT];
+  } else {
+    h[H_LIMIT] = st[CS_THRESHOLD] > 0.0 && !(st[CT_WAIT] > 0.0) ? st[CT_XS_LOW] : -1.0;
+    h[H_RUNOUT] = HUGE_VAL;
+  }
+}
+
+void FixEQContacts::sync_row(int i)
+{
+  const double *h = &hot[static_cast<std::size_t>(i) * H_NCOL];
+  state[i][CS_STRETCH] = h[H_STRETCH];
+  state[i][CS_FORCE] = h[H_FORCE];
+}
+
+void FixEQContacts::sync_rows()
+{
+  for (int i = 0; i < atom->nlocal; i++) sync_row(i);
+}
+
+// the compact rows of a run's first evaluation (its set-up, or the first
+// step of a run with pre no), from the state rows
+void FixEQContacts::make_hot_live()
+{
+  if (hot_live) return;
+  if (static_cast<int>(hot.size() / H_NCOL) < atom->nmax) grow_arrays(atom->nmax);
+  for (int i = 0; i < atom->nlocal; i++) load_hot(i);
+  hot_live = 1;
+}
+
+// the per-atom state with compact rows: they go where the state rows go
+void FixEQContacts::grow_arrays(int nmax)
+{
+  FixEQPerAtom::grow_arrays(nmax);
+  if (peratom_every > 1) hot.resize(static_cast<std::size_t>(nmax) * H_NCOL);
+}
+
+void FixEQContacts::copy_arrays(int i, int j, int delflag)
+{
+  FixEQPerAtom::copy_arrays(i, j, delflag);
+  if (hot_live) std::copy_n(&hot[std::size_t(i) * H_NCOL], H_NCOL, &hot[std::size_t(j) * H_NCOL]);
+}
+
+void FixEQContacts::set_arrays(int i)
+{
+  FixEQPerAtom::set_arrays(i);
+  if (hot_live) load_hot(i);
+}
+
+int FixEQContacts::pack_exchange(int i, double *buf)
+{
+  if (hot_live) sync_row(i);
+  return FixEQPerAtom::pack_exchange(i, buf);
+}
+
+int FixEQContacts::unpack_exchange(int nlocal, double *buf)
+{
+  const int n = FixEQPerAtom::unpack_exchange(nlocal, buf);
+  if (hot_live) load_hot(nlocal);
+  return n;
+}
+
+int FixEQContacts::pack_restart(int i, double *buf)
+{
+  if (hot_live) sync_row(i);
+  return FixEQPerAtom::pack_restart(i, buf);
 }
 
 // settle_thermal() of an attached contact in a step of dt > 0 (d: its
@@ -1193,6 +1374,7 @@ void FixEQContacts::tally(double **f)
 
 double FixEQContacts::next_event()
 {
+  if (hot_live) sync_rows();
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
   double dmin = std::numeric_limits<double>::infinity();
@@ -1380,7 +1562,8 @@ std::string FixEQContacts::layout_hint(long stored) const
 
 double FixEQContacts::memory_usage()
 {
-  return FixEQPerAtom::memory_usage() + static_cast<double>(qbuf.capacity()) * sizeof(double) +
+  return FixEQPerAtom::memory_usage() +
+      static_cast<double>(qbuf.capacity() + hot.capacity()) * sizeof(double) +
       static_cast<double>(dsv.capacity()) * sizeof(double) +
       static_cast<double>(members.capacity() + blist.capacity() + broke.capacity()) * sizeof(int);
 }

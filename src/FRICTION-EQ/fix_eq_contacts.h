@@ -78,6 +78,12 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void restart(char *) override;
   double memory_usage() override;
   int modify_param(int, char **) override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
 
  protected:
   void check_restored(int i) override;
@@ -139,6 +145,22 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   // budgets and ages as times on it: feq::to_engine()); it goes on by dt
   // at each step of a run, and is restart data
   double clock;
+  // keyword peratom N > 1 (thermal rows only): the per-atom output (the
+  // state rows) is valid every N steps, and within a run the common step
+  // works on compact rows `hot` (HotColumn in the .cpp).  Validity rule:
+  // while hot_live (from a run's first evaluation to its post_run()) the
+  // stretch and force of a local atom are those of its hot row, the rest
+  // of the hot row is made from its state row by load_hot() whenever that
+  // changes, and sync_rows() writes them back (every N steps, at the end
+  // of a run, before a row leaves in an exchange or a restart file)
+  int peratom_every;
+  int hot_live;
+  bool hot_T;    // T > 0: the rows have a rate bound and a run-out time
+  std::vector<double> hot;
+  void load_hot(int i);
+  void sync_row(int i);
+  void sync_rows();
+  void make_hot_live();
   bigint nevaluation, nversion, chg_from;
   EQChangeSet chg;
 
@@ -179,6 +201,8 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void store_sums(double fsum, double esum, double ssum, double natt, double ncount);
   template <bool ORTHOGONAL, bool THERMAL, bool ALL>
   long scan_thermal(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt);
+  template <bool ORTHOGONAL, bool ALL>
+  long scan_hot(const EQUtil::Unwrap &unwrap, bool allow_breaks, double dt);
   bool step_attached(double *st, int i, const EQUtil::Unwrap &unwrap, double xu, double d,
                      double dt, long &nb);
   bool took_step(double *st, const feq::ThermalStepResult &r, const EQUtil::Unwrap &unwrap,

@@ -138,6 +138,32 @@ TEST_F(EQContactsErrors, TemperatureAgingDelay)
     fix(base + "delay exp 2.0");
     command("run 0 post no");
   });
+  // peratom N: compact rows for thermal rows without a field; readers at
+  // the steps of its output only (LAMMPS' own check of peratom_freq)
+  HIDE_OUTPUT([&] { command("unfix c"); });
+  TEST_FAILURE(".*ERROR: Fix eq/contacts peratom: N must be an integer >= 1 \\(got 0\\).*",
+               fix(base + "thermal 0.1 1.0 1.0 peratom 0"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts peratom: missing N \\(steps\\).*",
+               fix(base + "thermal 0.1 1.0 1.0 peratom"););
+  TEST_FAILURE(".*ERROR: Fix eq/contacts: peratom: expected an integer, got '2.5'.*",
+               fix(base + "thermal 0.1 1.0 1.0 peratom 2.5"););
+  TEST_FAILURE(".*ERROR: Fix c eq/contacts: peratom 10 needs thermal rows \\(keywords thermal, "
+               "barrier, aging, delay, rest\\).*",
+               fix(base + "peratom 10"););
+  HIDE_OUTPUT([&] { fix(base + "delay exp 2.0 peratom 10"); });
+  TEST_FAILURE(".*ERROR: Fix c eq/contacts: peratom 10 does not work with pair style eq/elastic.*",
+               command("run 0 post no"););
+  HIDE_OUTPUT([&] {
+    command("pair_style none");
+    command("dump d all custom 5 /dev/null id f_c[1]");
+  });
+  TEST_FAILURE(".*ERROR: Dump custom and fix not computed at compatible times.*",
+               command("run 10 post no"););
+  HIDE_OUTPUT([&] {
+    command("undump d");
+    command("dump d all custom 10 /dev/null id f_c[1]");
+    command("run 10 post no");
+  });
 }
 
 TEST_F(EQContactsErrors, Threshold)

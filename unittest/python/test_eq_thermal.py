@@ -435,3 +435,76 @@ def test_respa_level_takes_its_own_step(tmp_path, level):
         assert np.array_equal(a, b)
     else:    # positions moved by two half steps against one whole: rounding
         assert np.array_equal(a[:, 2], b[:, 2]) and np.allclose(a, b, rtol=1e-9, atol=1e-9)
+
+
+COMPACT = """
+units lj
+dimension 2
+atom_style atomic
+boundary p p p
+if "${mode} == read" then "read_restart mid.100" else &
+  "lattice hex 1.1547005383792515" "region box block 0 10 0 12 -0.5 0.5" "create_box 1 box" &
+  "create_atoms 1 box" "mass 1 1.0" "velocity all set 0.05 0.02 0.0 units box"
+atom_modify sort 7 0.5
+comm_modify cutoff 0.5
+neighbor 0.3 bin
+neigh_modify every 1 delay 0 check yes
+fix c all eq/contacts 1.0 4711 threshold uniform 0.75 1.25 reform uniform -0.2 0.2 &
+    ${kw} crossing exact ${extra}
+fix slide all nve/noforce
+timestep 0.25
+thermo_style custom step f_c f_c[1] f_c[2] f_c[3] f_c[4] f_c[9]
+thermo_modify format float %.17g norm no
+thermo 1
+dump d all custom 10 d.* id f_c[1] f_c[2] f_c[3] f_c[4] f_c[5] f_c[6] f_c[7] f_c[8] f_c[9] &
+    f_c[10] f_c[11]
+dump_modify d sort id format float %.17g
+if "${mode} == write" then "restart 100 mid.*" "run 300" else "run 100" "run 100 pre no"
+"""
+
+
+@pytest.mark.parametrize("nprocs", [1, 4])
+@pytest.mark.parametrize("kw", ["thermal 0.1 1.0 1.0 aging log 0.2 1.0 delay exp 0.5",
+                                "aging exp 0.3 2.0 delay fixed 0.5"])
+def test_compact_rows_give_the_default_to_the_bit(tmp_path, kw, nprocs):
+    """Keyword peratom 10 (the common step on compact rows, the per-atom
+    output written back every 10 steps): the global output at every step
+    and the per-atom output every 10 steps are those of the default to the
+    last bit, with atoms migrating between ranks and sorted every 7 steps
+    (their compact rows go with them), a restart file written in the run
+    (step 100, rows written back as they are packed) and continued by
+    read_restart, in a run and a second one with pre no (compact rows made
+    anew from the state rows).  At T > 0 and at T = 0 (aging and delays
+    alone: no rate bound).  The continued run's output is that of the
+    default continued the same way; its per-atom output is the
+    uninterrupted run's up to the second run (read_restart orders the
+    atoms anew, and the sums with them; a run with pre no wraps the
+    positions into the box at other steps, which changes the unwrapped
+    positions in their last bits)."""
+    (tmp_path / "in.compact").write_text(COMPACT)
+
+    def go(tag, extra, mode):
+        d = tmp_path / tag
+        d.mkdir()
+        if mode == "read":
+            (d / "mid.100").write_bytes((tmp_path / "compact" / "mid.100").read_bytes())
+        log = eqtools.run_lammps(tmp_path / "in.compact", {"kw": kw, "extra": extra, "mode": mode},
+                                 nprocs=nprocs, cwd=d)
+        thermo = {}
+        for line in log.splitlines():
+            f = line.split()
+            if len(f) == 7 and f[0].isdigit():
+                thermo[int(f[0])] = f[1:]
+        dumps = {int(p.name[2:]): p.read_text().split("ITEM: ATOMS")[1] for p in d.glob("d.*")}
+        return thermo, dumps
+
+    ref_t, ref_d = go("default", "", "write")
+    hot_t, hot_d = go("compact", "peratom 10", "write")
+    cont_t, cont_d = go("continued", "peratom 10", "read")
+    cref_t, cref_d = go("continued-default", "", "read")
+    assert sorted(ref_t) == list(range(301)) and sorted(ref_d) == list(range(0, 301, 10))
+    assert float(ref_t[300][3]) > 240    # breaks (entry 3): more than one per contact
+    assert hot_t == ref_t and hot_d == ref_d
+    assert sorted(cont_d) == list(range(100, 301, 10))
+    assert cont_t == cref_t and sorted(cont_t) == list(range(100, 301)) and cont_d == cref_d
+    assert all(cont_d[k] == ref_d[k] for k in range(100, 201, 10))
