@@ -34,10 +34,13 @@
 // a branch taken rarely (the slow path of a hot loop): the compiler keeps
 // the loop's sums in registers and spills them around the call of the
 // slow path only
+// and a hint that memory at p will be read soon (nothing where unknown)
 #if defined(__GNUC__)
 #define FEQ_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#define FEQ_PREFETCH(p) __builtin_prefetch(p)
 #else
 #define FEQ_UNLIKELY(x) (x)
+#define FEQ_PREFETCH(p) ((void) (p))
 #endif
 
 namespace LAMMPS_NS {

@@ -173,6 +173,7 @@ FixEQContacts::FixEQContacts(LAMMPS *lmp, int narg, char **arg) :
   energy_global_flag = 1;
   respa_level_support = 1;
   ilevel_respa = 0;
+  respa_run = 0;
   peratom_every = a.peratom_every;
   hot_T = model->thermal_model().params().thermal();
   if (peratom_every > 1 && !model->thermal_active())
@@ -262,7 +263,8 @@ void FixEQContacts::parse(int narg, char **arg, Args &a)
         if (iarg >= args.size()) throw feq::SpecError("peratom: missing N (steps)");
         const bigint n = EQUtil::bnumeric(lmp, "Fix eq/contacts: peratom", args[iarg++]);
         if (n < 1 || n > MAXSMALLINT)
-          throw feq::SpecError("peratom: N must be an integer >= 1 (got " + args[iarg - 1] + ")");
+          throw feq::SpecError("peratom: N must be an integer from 1 to " +
+                               std::to_string(MAXSMALLINT) + " (got " + args[iarg - 1] + ")");
         a.peratom_every = static_cast<int>(n);
       } else {
         throw feq::SpecError("unknown keyword '" + kw + "'; allowed: " + KEYWORDS);
@@ -364,7 +366,9 @@ int FixEQContacts::setmask()
 
 void FixEQContacts::init()
 {
-  if (utils::strmatch(update->integrate_style, "^respa")) {
+  end_hot();    // (a run that ended in an error had no post_run())
+  respa_run = utils::strmatch(update->integrate_style, "^respa") ? 1 : 0;
+  if (respa_run) {
     ilevel_respa = static_cast<Respa *>(update->integrate)->nlevels - 1;
     if (respa_level >= 0) ilevel_respa = MIN(respa_level, ilevel_respa);
   }
@@ -499,6 +503,7 @@ void FixEQContacts::min_pre_force(int /*vflag*/)
 void FixEQContacts::setup(int vflag)
 {
   ran = 1;
+  end_hot();
   if (!field) {
     mark_departed();
     // no interaction in this run: a field left by an earlier run with
@@ -519,6 +524,7 @@ void FixEQContacts::setup(int vflag)
 void FixEQContacts::min_setup(int /*vflag*/)
 {
   ran = 1;
+  end_hot();
   if (field) {
     apply_forces();
     return;
@@ -553,8 +559,7 @@ void FixEQContacts::post_force_respa(int vflag, int ilevel, int /*iloop*/)
 // level evaluates loop times per outer step, each dt/loop long)
 double FixEQContacts::step_dt() const
 {
-  if (utils::strmatch(update->integrate_style, "^respa"))
-    return static_cast<Respa *>(update->integrate)->step[ilevel_respa];
+  if (respa_run) return static_cast<Respa *>(update->integrate)->step[ilevel_respa];
   return update->dt;
 }
 
@@ -575,9 +580,7 @@ void FixEQContacts::post_run()
   // all subtract may come in between; a run with pre no has no set-up)
   masks_builds = -1;
   if (EQElasticField *f = EQLink::live_pair(field, force)) f->field_report();
-  // between runs the state rows are the whole state (peratom N > 1)
-  if (hot_live) sync_rows();
-  hot_live = 0;
+  end_hot();
 }
 
 /* ----------------------------------------------------------------------
@@ -627,8 +630,10 @@ void FixEQContacts::apply(bool allow_breaks)
   }
   local_sum[SUM_BREAKS] = static_cast<double>(nb);
   clock += dt;
-  // the per-atom output, valid every peratom_every steps and at a set-up
-  if (hot_live && (in_setup || update->ntimestep % peratom_every == 0)) sync_rows();
+  // the per-atom output, valid every peratom_every steps, at a set-up and
+  // throughout a minimization
+  if (hot_live && (in_setup || !allow_breaks || update->ntimestep % peratom_every == 0))
+    sync_rows();
 }
 
 // returns the number of breaks.  ALL: the fix's group is all and every
@@ -768,6 +773,12 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
 template <bool ORTHOGONAL, bool ALL>
 long FixEQContacts::scan_hot(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks, double dt)
 {
+  // in blocks of BLOCK contacts: first the stretches and the common-step
+  // test of the whole block (NaN: off the common step), with the state
+  // rows of those off it fetched ahead (prefetched), then the block in
+  // index order.  Nothing the second pass writes (rows, compact rows and
+  // forces of other contacts) enters a test of the first
+  constexpr int BLOCK = 32;
   const EQUtil::Unwrap unwrap = unwrap_arg;
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
@@ -776,35 +787,53 @@ long FixEQContacts::scan_hot(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks
   const double t_end = clock + dt;
   const double reach = unwrap.stretch_reach();
   double *const rows = hot.data();
+  const double *const cold = nlocal > 0 ? state[0] : nullptr;    // nmax x ncol in one block
+  const std::size_t width = ncol;
   double *const fd = nlocal > 0 ? atom->f[0] + idir : nullptr;
   double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = ALL ? nlocal : 0.0;
   long nb = 0;
-  for (int i = 0; i < nlocal; i++) {
-    if (!ALL) {
-      if (!(mask[i] & bit)) continue;
-      ncount += 1.0;
+  double sblock[BLOCK];
+  for (int i0 = 0; i0 < nlocal; i0 += BLOCK) {
+    const int n = std::min(BLOCK, nlocal - i0);
+    for (int k = 0; k < n; k++) {
+      const int j = i0 + k;
+      const double *const h = rows + static_cast<std::size_t>(j) * H_NCOL;
+      const double s = (ORTHOGONAL ? unwrap.orthogonal_coordinate(j) : unwrap(j)) - h[H_ANCHOR];
+      // (&: both tests without a branch between them)
+      const bool common = quick & (std::fabs(s) < std::min(h[H_LIMIT], reach)) &
+          (t_end < h[H_RUNOUT]);
+      sblock[k] = common ? s : NAN;
+      if (FEQ_UNLIKELY(!common)) {
+        FEQ_PREFETCH(cold + j * width);
+        FEQ_PREFETCH(cold + j * width + width - 1);
+      }
     }
-    double *const h = rows + static_cast<std::size_t>(i) * H_NCOL;
-    const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
-    double s = xu - h[H_ANCHOR];
-    const double a = std::fabs(s);
-    const bool common = quick && a < reach && a < h[H_LIMIT] && t_end < h[H_RUNOUT];
-    if (FEQ_UNLIKELY(!common)) {
-      sync_row(i);
-      const bool present = settle_thermal_scan(i, unwrap_arg, xu, allow_breaks, dt, nb);
-      load_hot(i);
-      if (!present) continue;
-      s = h[H_STRETCH];
-    } else {
-      h[H_STRETCH] = s;
+    for (int k = 0; k < n; k++) {
+      const int i = i0 + k;
+      if (!ALL) {
+        if (!(mask[i] & bit)) continue;
+        ncount += 1.0;
+      }
+      double *const h = rows + static_cast<std::size_t>(i) * H_NCOL;
+      double s = sblock[k];
+      if (FEQ_UNLIKELY(std::isnan(s))) {
+        const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
+        sync_row(i);
+        const bool present = settle_thermal_scan(i, unwrap_arg, xu, allow_breaks, dt, nb);
+        load_hot(i);
+        if (!present) continue;
+        s = h[H_STRETCH];
+      } else {
+        h[H_STRETCH] = s;
+      }
+      const double fc = h[H_STIFFNESS] * s;
+      h[H_FORCE] = fc;
+      fd[3 * i] -= fc;
+      fsum += fc;
+      esum += fc * s;
+      ssum += s;
+      natt += 1.0;
     }
-    const double fc = h[H_STIFFNESS] * s;
-    h[H_FORCE] = fc;
-    fd[3 * i] -= fc;
-    fsum += fc;
-    esum += fc * s;
-    ssum += s;
-    natt += 1.0;
   }
   local_breaks_total += nb;
   store_sums(fsum, esum, ssum, natt, ncount);
@@ -833,7 +862,10 @@ void FixEQContacts::load_hot(int i)
   h[H_STRETCH] = st[CS_STRETCH];
   h[H_FORCE] = st[CS_FORCE];
   if (hot_T) {
-    h[H_LIMIT] = st[CT_BOUND_S] >= 0.0 ? std::min(st[CT_XS_LOW], next_up(st[CT_BOUND_S])) : -1.0;
+    // (+ 0.0: a bound of -0 is 0; a bound of +inf gives NaN, and then
+    // XS_LOW, as |s| <= inf holds)
+    h[H_LIMIT] =
+        st[CT_BOUND_S] >= 0.0 ? std::min(st[CT_XS_LOW], next_up(st[CT_BOUND_S] + 0.0)) : -1.0;
     h[H_RUNOUT] = st[CT_RUNOUT];
   } else {
     h[H_LIMIT] = st[CS_THRESHOLD] > 0.0 && !(st[CT_WAIT] > 0.0) ? st[CT_XS_LOW] : -1.0;
@@ -858,9 +890,17 @@ void FixEQContacts::sync_rows()
 void FixEQContacts::make_hot_live()
 {
   if (hot_live) return;
-  if (static_cast<int>(hot.size() / H_NCOL) < atom->nmax) grow_arrays(atom->nmax);
+  hot.resize(static_cast<std::size_t>(atom->nmax) * H_NCOL);
   for (int i = 0; i < atom->nlocal; i++) load_hot(i);
   hot_live = 1;
+}
+
+// between runs (and at the set-up of one) the state rows are the whole
+// state: the compact rows' stretches and forces written back
+void FixEQContacts::end_hot()
+{
+  if (hot_live) sync_rows();
+  hot_live = 0;
 }
 
 // the per-atom state with compact rows: they go where the state rows go
@@ -873,7 +913,8 @@ void FixEQContacts::grow_arrays(int nmax)
 void FixEQContacts::copy_arrays(int i, int j, int delflag)
 {
   FixEQPerAtom::copy_arrays(i, j, delflag);
-  if (hot_live) std::copy_n(&hot[std::size_t(i) * H_NCOL], H_NCOL, &hot[std::size_t(j) * H_NCOL]);
+  if (hot_live && i != j)
+    std::copy_n(&hot[std::size_t(i) * H_NCOL], H_NCOL, &hot[std::size_t(j) * H_NCOL]);
 }
 
 void FixEQContacts::set_arrays(int i)

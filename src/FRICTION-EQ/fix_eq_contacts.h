@@ -114,6 +114,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   bigint seed;
   int idir;            // sliding direction 0,1,2
   int ilevel_respa;
+  int respa_run;       // this run is run_style respa (init())
   double break_tol;    // relative tolerance of the breaking test (from a driver, see init())
   EQHeld<EQElasticField> field;    // the interaction of this run, or none
   int interacting;                 // the last run had one (output semantics)
@@ -161,6 +162,7 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   void sync_row(int i);
   void sync_rows();
   void make_hot_live();
+  void end_hot();
   bigint nevaluation, nversion, chg_from;
   EQChangeSet chg;
 

@@ -141,7 +141,7 @@ TEST_F(EQContactsErrors, TemperatureAgingDelay)
   // peratom N: compact rows for thermal rows without a field; readers at
   // the steps of its output only (LAMMPS' own check of peratom_freq)
   HIDE_OUTPUT([&] { command("unfix c"); });
-  TEST_FAILURE(".*ERROR: Fix eq/contacts peratom: N must be an integer >= 1 \\(got 0\\).*",
+  TEST_FAILURE(".*ERROR: Fix eq/contacts peratom: N must be an integer from 1 to 2147483647 \\(got 0\\).*",
                fix(base + "thermal 0.1 1.0 1.0 peratom 0"););
   TEST_FAILURE(".*ERROR: Fix eq/contacts peratom: missing N \\(steps\\).*",
                fix(base + "thermal 0.1 1.0 1.0 peratom"););
