@@ -15,6 +15,11 @@ X = 0.1 k on [0, 4] for slider steps dX = 0.05 ... 0.002 with crossing
 exact and step, the same seed (common random numbers); the reference is
 crossing exact at dX = 0.001.
 
+The last two cases add the keyword peratom 100 (the per-atom array
+valid every 100 steps, the common step on compact rows of 6 doubles):
+the same numbers, fewer bytes per contact-step where the state does not
+fit in the caches.
+
 Option --speeds: the slider velocity v (default 1); a contact lives
 about 100/v steps, and the work per life (a new threshold, the budget of
 its thermal hazard, two or three bounds of its rate) weighs 1/(steps per
@@ -50,7 +55,10 @@ CASES = [("T = 0", ""),
          ("thermal", "thermal 0.02 1.0 1.0"),
          ("thermal, barrier 2 0.25", "thermal 0.02 1.0 1.0 barrier 2 0.25"),
          ("aging (T = 0)", "aging log 0.05 1.0"),
-         ("thermal + aging + delay", "thermal 0.02 1.0 1.0 aging log 0.05 1.0 delay exp 0.1")]
+         ("thermal + aging + delay", "thermal 0.02 1.0 1.0 aging log 0.05 1.0 delay exp 0.1"),
+         ("thermal, peratom 100", "thermal 0.02 1.0 1.0 peratom 100"),
+         ("all three, peratom 100",
+          "thermal 0.02 1.0 1.0 aging log 0.05 1.0 delay exp 0.1 peratom 100")]
 
 
 def accuracy(out):

@@ -22,6 +22,9 @@
                   bound, the bound's stretch and rate, budget, age)
      hot 7 r/o    the same without the writes: 7 doubles (S F K A, the
                   lower bound, the bound's stretch, the run-out time)
+     compact 6    fix eq/contacts' compact row with keyword peratom N > 1
+                  (since stop 48): hot 7 r/o with the lower bound and the
+                  bound's stretch as one limit of |s| (A K LIMIT RUN-OUT S F)
 
    The loops run in turn, in blocks of passes (one loop's passes back to
    back, so that it finds its own data in the cache as the fix does in a
@@ -93,6 +96,7 @@ struct Sums {
 // the hot rows' columns
 enum Hot9 { H_S, H_F, H_K, H_A, H_XSLOW, H_BOUND_S, H_RATE, H_BUDGET, H_AGE, H9 };
 enum Hot7 { R_S, R_F, R_K, R_A, R_XSLOW, R_BOUND_S, R_RUNOUT, H7 };
+enum Compact6 { C_A, C_K, C_LIMIT, C_RUNOUT, C_S, C_F, H6 };
 
 [[noreturn]] void off_path()
 {
@@ -124,6 +128,7 @@ struct Today {
   static constexpr int S = CS_STRETCH, F = CS_FORCE, K = CS_STIFFNESS, A = CS_ANCHOR, XSLOW = CT_XS_LOW,
                        BOUND_S = CT_BOUND_S, RATE = CT_BOUND_RATE, BUDGET = CT_BUDGET, AGE = CT_AGE;
   static constexpr bool WRITES = true;
+  static constexpr bool ONE_LIMIT = false;
 };
 struct TodayReadOnly : Today {
   static constexpr int BUDGET = CT_RUNOUT;
@@ -134,12 +139,21 @@ struct Hot9Row {
   static constexpr int S = H_S, F = H_F, K = H_K, A = H_A, XSLOW = H_XSLOW, BOUND_S = H_BOUND_S, RATE = H_RATE,
                        BUDGET = H_BUDGET, AGE = H_AGE;
   static constexpr bool WRITES = true;
+  static constexpr bool ONE_LIMIT = false;
 };
 struct Hot7Row {
   static constexpr std::size_t W = H7;
   static constexpr int S = R_S, F = R_F, K = R_K, A = R_A, XSLOW = R_XSLOW, BOUND_S = R_BOUND_S,
                        BUDGET = R_RUNOUT;
   static constexpr bool WRITES = false;
+  static constexpr bool ONE_LIMIT = false;
+};
+struct Compact6Row {
+  static constexpr std::size_t W = H6;
+  static constexpr int S = C_S, F = C_F, K = C_K, A = C_A, XSLOW = C_LIMIT, BOUND_S = C_LIMIT,
+                       BUDGET = C_RUNOUT;
+  static constexpr bool WRITES = false;
+  static constexpr bool ONE_LIMIT = true;
 };
 
 // the common step at T > 0 in layout L; t: the time step (WRITES), else
@@ -151,7 +165,11 @@ template <class L> __attribute__((noinline)) double thermal(Scene &scene, double
   for (int i = 0; i < c.n; i++) {
     double *st = rows + i * L::W;
     const double s = c.unwrap(i) - st[L::A], a = std::fabs(s);
-    if (!(a < c.reach && a < st[L::XSLOW] && a <= st[L::BOUND_S])) off_path();
+    if constexpr (L::ONE_LIMIT) {
+      if (!(a < c.reach && a < st[L::XSLOW])) off_path();
+    } else if (!(a < c.reach && a < st[L::XSLOW] && a <= st[L::BOUND_S])) {
+      off_path();
+    }
     if constexpr (L::WRITES) {
       const double dH = st[L::RATE] * t;
       if (!(dH < st[L::BUDGET])) off_path();
@@ -192,7 +210,8 @@ int main(int argc, char **argv)
   // contacts 0.1 behind their atoms: stretch 0.1, thresholds 1 (lower
   // bound 0.75, the bound's stretch 0.9), budgets that never run out
   std::vector<double> r0(n * std::size_t(CS_NCOL)), rt(n * std::size_t(Today::W)),
-      ro(n * std::size_t(CT_NCOL)), h9(n * std::size_t(H9)), h7(n * std::size_t(H7));
+      ro(n * std::size_t(CT_NCOL)), h9(n * std::size_t(H9)), h7(n * std::size_t(H7)),
+      h6(n * std::size_t(H6));
   for (int i = 0; i < n; i++) {
     c.x[3 * i] = 0.01 * i;
     double *a = &r0[i * std::size_t(CS_NCOL)], *b = &rt[i * Today::W];
@@ -212,15 +231,21 @@ int main(int argc, char **argv)
     p[H_BOUND_S] = q[R_BOUND_S] = 0.9;
     p[H_RATE] = 1e-3;
     p[H_BUDGET] = q[R_RUNOUT] = 1e300;
+    double *u = &h6[i * std::size_t(H6)];
+    u[C_K] = 1.0;
+    u[C_A] = a[CS_ANCHOR];
+    u[C_LIMIT] = 0.75;    // min(lower bound, the double above the bound's stretch)
+    u[C_RUNOUT] = 1e300;
   }
-  const char *names[] = {"T = 0", "thermal", "read-only", "hot 9", "hot 7 r/o"};
-  std::vector<double> best(5, HUGE_VAL);
+  const char *names[] = {"T = 0", "thermal", "read-only", "hot 9", "hot 7 r/o", "compact 6"};
+  constexpr int NLOOP = 6;
+  std::vector<double> best(NLOOP, HUGE_VAL);
   double sink = 0.0;
   auto now = [] { return Clock::now(); };
   auto secs = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
   for (int p0 = 0; p0 < passes; p0 += block) {
     const int p1 = std::min(passes, p0 + block);
-    for (int k = 0; k < 5; k++) {
+    for (int k = 0; k < NLOOP; k++) {
       for (int p = p0; p < p1; p++) {
         const double t_end = (p + 1) * dt;
         const auto t0 = now();
@@ -229,14 +254,15 @@ int main(int argc, char **argv)
           case 1: sink += thermal<Today>(c, rt.data(), dt); break;
           case 2: sink += thermal<TodayReadOnly>(c, ro.data(), t_end); break;
           case 3: sink += thermal<Hot9Row>(c, h9.data(), dt); break;
-          default: sink += thermal<Hot7Row>(c, h7.data(), t_end); break;
+          case 4: sink += thermal<Hot7Row>(c, h7.data(), t_end); break;
+          default: sink += thermal<Compact6Row>(c, h6.data(), t_end); break;
         }
         best[k] = std::min(best[k], secs(t0, now()));
       }
     }
   }
   std::printf("N = %d, %d passes in blocks of %d; minimum ns per contact-step (ratio to T = 0):", n, passes, block);
-  for (int k = 0; k < 5; k++) std::printf("  %s %.2f (%.2f)", names[k], 1e9 * best[k] / n, best[k] / best[0]);
+  for (int k = 0; k < NLOOP; k++) std::printf("  %s %.2f (%.2f)", names[k], 1e9 * best[k] / n, best[k] / best[0]);
   std::printf("\n");
   return sink == 0.123456789 ? 1 : 0;    // keeps the sums alive
 }
