@@ -71,8 +71,12 @@ const char *KEYWORDS = "threshold, reform, stiffness, dir, crossing, start, refo
 // the columns of a compact row (keyword peratom N > 1): what the common
 // thermal step reads and writes.  LIMIT: the common step holds while
 // |s| < LIMIT and the step ends before RUNOUT (ContactModel::stored_quick()
-// in one test, load_hot())
+// in one test, load_hot()).  A contact that waits to re-form has LIMIT
+// HOT_WAITING and its delay left (CT_WAIT) in RUNOUT, and the step of one
+// whose delay goes on (ContactModel::quick_wait()) is made on the compact
+// row too: its anchor follows its atom and its delay shortens there
 enum HotColumn : int { H_ANCHOR, H_STIFFNESS, H_LIMIT, H_RUNOUT, H_STRETCH, H_FORCE, H_NCOL };
+constexpr double HOT_WAITING = -2.0;    // (any other contact not attached: -1)
 constexpr double NOT_A_CONTACT = std::numeric_limits<double>::quiet_NaN();
 // the bit of group all (Group: group 0; set in the mask of every atom
 // LAMMPS creates, cleared only by commands such as group all subtract)
@@ -803,7 +807,7 @@ long FixEQContacts::scan_hot(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks
       const bool common = quick & (std::fabs(s) < std::min(h[H_LIMIT], reach)) &
           (t_end < h[H_RUNOUT]);
       sblock[k] = common ? s : NAN;
-      if (FEQ_UNLIKELY(!common)) {
+      if (FEQ_UNLIKELY(!common) && h[H_LIMIT] != HOT_WAITING) {
         FEQ_PREFETCH(cold + j * width);
         FEQ_PREFETCH(cold + j * width + width - 1);
       }
@@ -818,6 +822,12 @@ long FixEQContacts::scan_hot(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks
       double s = sblock[k];
       if (FEQ_UNLIKELY(std::isnan(s))) {
         const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
+        if (h[H_LIMIT] == HOT_WAITING && quick &&
+            model->wait_goes_on(h[H_RUNOUT], unwrap.stretch(xu - h[H_ANCHOR]), dt)) {
+          h[H_RUNOUT] -= dt;    // (settle_thermal_scan()'s waiting contact)
+          h[H_ANCHOR] = xu;
+          continue;    // (stretch and force 0 since it broke)
+        }
         sync_row(i);
         const bool present = settle_thermal_scan(i, unwrap_arg, xu, allow_breaks, dt, nb);
         load_hot(i);
@@ -861,7 +871,10 @@ void FixEQContacts::load_hot(int i)
   h[H_STIFFNESS] = st[CS_STIFFNESS];
   h[H_STRETCH] = st[CS_STRETCH];
   h[H_FORCE] = st[CS_FORCE];
-  if (hot_T) {
+  if (st[CS_THRESHOLD] > 0.0 && st[CT_WAIT] > 0.0) {
+    h[H_LIMIT] = HOT_WAITING;
+    h[H_RUNOUT] = st[CT_WAIT];
+  } else if (hot_T) {
     // (+ 0.0: a bound of -0 is 0; a bound of +inf gives NaN, and then
     // XS_LOW, as |s| <= inf holds)
     h[H_LIMIT] =
@@ -876,8 +889,13 @@ void FixEQContacts::load_hot(int i)
 void FixEQContacts::sync_row(int i)
 {
   const double *h = &hot[static_cast<std::size_t>(i) * H_NCOL];
-  state[i][CS_STRETCH] = h[H_STRETCH];
-  state[i][CS_FORCE] = h[H_FORCE];
+  double *st = state[i];
+  st[CS_STRETCH] = h[H_STRETCH];
+  st[CS_FORCE] = h[H_FORCE];
+  if (h[H_LIMIT] == HOT_WAITING) {
+    st[CS_ANCHOR] = h[H_ANCHOR];
+    st[CT_WAIT] = h[H_RUNOUT];
+  }
 }
 
 void FixEQContacts::sync_rows()

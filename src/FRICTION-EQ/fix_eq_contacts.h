@@ -150,10 +150,12 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   // state rows) is valid every N steps, and within a run the common step
   // works on compact rows `hot` (HotColumn in the .cpp).  Validity rule:
   // while hot_live (from a run's first evaluation to its post_run()) the
-  // stretch and force of a local atom are those of its hot row, the rest
-  // of the hot row is made from its state row by load_hot() whenever that
-  // changes, and sync_rows() writes them back (every N steps, at the end
-  // of a run, before a row leaves in an exchange or a restart file)
+  // stretch and force of a local atom are those of its hot row (and the
+  // anchor and delay left of a waiting contact), the rest of the hot row
+  // is made from its state row by load_hot() whenever that changes, and
+  // sync_row() writes them back (every N steps, at the set-up and end of
+  // a run, before a row leaves in an exchange or a restart file, before
+  // the engine takes the row)
   int peratom_every;
   int hot_live;
   bool hot_T;    // T > 0: the rows have a rate bound and a run-out time

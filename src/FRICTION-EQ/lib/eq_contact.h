@@ -362,10 +362,16 @@ class ContactModel {
   // otherwise
   bool quick_wait(double *st, double m, double dt) const
   {
-    if (!(st[CT_WAIT] > (exact ? dt : dt + 1e-9 * dt)) || !std::isfinite(m)) return false;
+    if (!wait_goes_on(st[CT_WAIT], m, dt)) return false;
     st[CT_WAIT] -= dt;
     st[CS_STRETCH] = 0.0;
     return true;
+  }
+  // quick_wait()'s test: a wait of this length left goes on over the
+  // step (the atom's motion m finite); it is then wait - dt
+  bool wait_goes_on(double wait, double m, double dt) const
+  {
+    return wait > (exact ? dt : dt + 1e-9 * dt) && std::isfinite(m);
   }
 
   // the thinning sampler's choice of bound, from the contact's path and
