@@ -427,7 +427,9 @@ def gen_contacts(b):
                           P("beta", "0.05", valid=("zero",)), P("tau_a", "1.0")]),
                ("delay", [style_word("delay", "exp", ("none", "fixed", "exp")),
                           P("tau", "0.1", valid=("zero",))]),
-               ("rest", [P("t_w", "10.0", valid=("zero",))])]
+               ("rest", [P("t_w", "10.0", valid=("zero",))]),
+               # the compact rows (per-atom output every 5 steps: thermo reads globals only)
+               ("peratom", [P("N", "5", "int")])]
     for k, (thr, ref, stf) in enumerate(dist_groups()):
         thr = (thr[0], [style_word("style", thr[1][0], ("uniform", "gaussian", "realistic", "table"))]
                + thr[1][1:]) if k == 0 else thr
