@@ -778,11 +778,11 @@ template <bool ORTHOGONAL, bool ALL>
 long FixEQContacts::scan_hot(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks, double dt)
 {
   // in blocks of BLOCK contacts: first the stretches and the common-step
-  // test of the whole block (NaN: off the common step), with the state
-  // rows of those off it fetched ahead (prefetched), then the block in
-  // index order.  Nothing the second pass writes (rows, compact rows and
-  // forces of other contacts) enters a test of the first
-  constexpr int BLOCK = 32;
+  // test of the whole block (a bit of `off`: off the common step), with
+  // the state rows of the members off it fetched ahead (prefetched), then
+  // the block in index order.  Nothing the second pass writes (rows,
+  // compact rows and forces of other contacts) enters a test of the first
+  constexpr int BLOCK = 32;    // (the bits of `off`)
   const EQUtil::Unwrap unwrap = unwrap_arg;
   const int *const mask = atom->mask;
   const int nlocal = atom->nlocal;
@@ -799,6 +799,7 @@ long FixEQContacts::scan_hot(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks
   double sblock[BLOCK];
   for (int i0 = 0; i0 < nlocal; i0 += BLOCK) {
     const int n = std::min(BLOCK, nlocal - i0);
+    uint32_t off = 0;
     for (int k = 0; k < n; k++) {
       const int j = i0 + k;
       const double *const h = rows + static_cast<std::size_t>(j) * H_NCOL;
@@ -806,10 +807,13 @@ long FixEQContacts::scan_hot(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks
       // (&: both tests without a branch between them)
       const bool common = quick & (std::fabs(s) < std::min(h[H_LIMIT], reach)) &
           (t_end < h[H_RUNOUT]);
-      sblock[k] = common ? s : NAN;
-      if (FEQ_UNLIKELY(!common) && h[H_LIMIT] != HOT_WAITING) {
-        FEQ_PREFETCH(cold + j * width);
-        FEQ_PREFETCH(cold + j * width + width - 1);
+      sblock[k] = s;
+      off |= static_cast<uint32_t>(!common) << k;
+      if (FEQ_UNLIKELY(!common) && h[H_LIMIT] != HOT_WAITING && (ALL || (mask[j] & bit))) {
+        const double *const st = cold + j * width;    // (15 doubles: up to 3 cache lines)
+        FEQ_PREFETCH(st);
+        FEQ_PREFETCH(st + 7);
+        FEQ_PREFETCH(st + width - 1);
       }
     }
     for (int k = 0; k < n; k++) {
@@ -820,13 +824,14 @@ long FixEQContacts::scan_hot(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks
       }
       double *const h = rows + static_cast<std::size_t>(i) * H_NCOL;
       double s = sblock[k];
-      if (FEQ_UNLIKELY(std::isnan(s))) {
+      if (FEQ_UNLIKELY((off >> k) & 1u)) {
         const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
         if (h[H_LIMIT] == HOT_WAITING && quick &&
             model->wait_goes_on(h[H_RUNOUT], unwrap.stretch(xu - h[H_ANCHOR]), dt)) {
           h[H_RUNOUT] -= dt;    // (settle_thermal_scan()'s waiting contact)
           h[H_ANCHOR] = xu;
-          continue;    // (stretch and force 0 since it broke)
+          h[H_STRETCH] = h[H_FORCE] = 0.0;
+          continue;
         }
         sync_row(i);
         const bool present = settle_thermal_scan(i, unwrap_arg, xu, allow_breaks, dt, nb);
@@ -914,7 +919,7 @@ void FixEQContacts::make_hot_live()
 }
 
 // between runs (and at the set-up of one) the state rows are the whole
-// state: the compact rows' stretches and forces written back
+// state: what the compact rows hold written back (sync_row())
 void FixEQContacts::end_hot()
 {
   if (hot_live) sync_rows();
@@ -1585,13 +1590,15 @@ void FixEQContacts::check_restored(int i)
   else if (!(nb >= 0.0 && nb <= 9007199254740992.0 && nb == std::floor(nb)))
     why = fmt::format("break count {}", nb);
   // (a budget is counted down only under a bound with a rate; otherwise
-  // it is kept as its negative)
-  if (why.empty() && model->thermal_active() &&
+  // it is kept as its negative.  A row with no contact formed, that of an
+  // atom outside the group, has no thermal state yet: form() makes it)
+  const bool thermal_state = model->thermal_active() && th != 0.0;
+  if (why.empty() && thermal_state &&
       !(st[CT_WAIT] >= 0.0 &&
         (std::signbit(st[CT_RUNOUT]) || (st[CT_BOUND_S] >= 0.0 && st[CT_BOUND_RATE] > 0.0))))
     why = fmt::format("delay left {}, budget run-out {} with rate bound {} up to {}", st[CT_WAIT],
                       st[CT_RUNOUT], st[CT_BOUND_RATE], st[CT_BOUND_S]);
-  if (why.empty() && model->thermal_active() &&
+  if (why.empty() && thermal_state &&
       !(st[CT_BOUND_RATE] >= 0.0 && st[CT_CANDIDATE] >= 0.0 &&
         st[CT_CANDIDATE] == std::floor(st[CT_CANDIDATE]) && st[CT_XS_LOW] >= 0.0))
     why = fmt::format("rate bound {}, candidate count {}, threshold bound {}", st[CT_BOUND_RATE],

@@ -154,8 +154,9 @@ class FixEQContacts : public FixEQPerAtom, public EQCoordinateSource, public EQE
   // anchor and delay left of a waiting contact), the rest of the hot row
   // is made from its state row by load_hot() whenever that changes, and
   // sync_row() writes them back (every N steps, at the set-up and end of
-  // a run, before a row leaves in an exchange or a restart file, before
-  // the engine takes the row)
+  // a run, throughout a minimization, before a row leaves in an exchange
+  // or a restart file, before the engine takes the row; init(), setup()
+  // and min_setup() end a period that a failed run left open)
   int peratom_every;
   int hot_live;
   bool hot_T;    // T > 0: the rows have a rate bound and a run-out time

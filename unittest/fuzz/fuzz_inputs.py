@@ -427,9 +427,7 @@ def gen_contacts(b):
                           P("beta", "0.05", valid=("zero",)), P("tau_a", "1.0")]),
                ("delay", [style_word("delay", "exp", ("none", "fixed", "exp")),
                           P("tau", "0.1", valid=("zero",))]),
-               ("rest", [P("t_w", "10.0", valid=("zero",))]),
-               # the compact rows (per-atom output every 5 steps: thermo reads globals only)
-               ("peratom", [P("N", "5", "int")])]
+               ("rest", [P("t_w", "10.0", valid=("zero",))])]
     for k, (thr, ref, stf) in enumerate(dist_groups()):
         thr = (thr[0], [style_word("style", thr[1][0], ("uniform", "gaussian", "realistic", "table"))]
                + thr[1][1:]) if k == 0 else thr
@@ -456,6 +454,17 @@ def gen_contacts(b):
         done |= {(g, "style") for g in ("threshold", "reform", "stiffness")}
         done |= {(g, n) for g, n in [("dir", "dir"), ("crossing", "crossing"), ("start", "start"),
                                      ("reform_as", "reform_as"), ("avalanches", "file")]}
+    # the compact rows (keyword peratom; per-atom output every 5 steps, the
+    # thermo reads globals only): configuration 2 with peratom 5, and the
+    # mutations of N (configuration 2 itself keeps the default rows)
+    thr, ref, stf = list(dist_groups())[2]
+    cmd = contacts_cmd(thr, ref, stf, extras2 + [("peratom", [P("N", "5", "int")])])
+    b.add("contacts.control-peratom", "control", fill(BASE_CONTACTS, contacts=cmd.line()),
+          Expect("ok"), dict(GOOD_FILES))
+    for suffix, cls, line, kw, p, val in mutate_cmd(cmd, set()):
+        if suffix.startswith("peratom."):
+            ocls, exp = mutation_expect(cmd, cls, kw, p, val)
+            b.add(f"contacts.{suffix}", ocls, fill(BASE_CONTACTS, contacts=line), exp, GOOD_FILES)
     # keywords: misspelled, unknown, threshold missing, a value left over
     good = "fix c all eq/contacts 1.0 4711 threshold uniform 0.75 1.25"
     for bad in ("thresholds", "Threshold", "reforms", "stifness", "direction", "cross", "startup",
