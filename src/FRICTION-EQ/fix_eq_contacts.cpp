@@ -77,6 +77,23 @@ const char *KEYWORDS = "threshold, reform, stiffness, dir, crossing, start, refo
 // row too: its anchor follows its atom and its delay shortens there
 enum HotColumn : int { H_ANCHOR, H_STIFFNESS, H_LIMIT, H_RUNOUT, H_STRETCH, H_FORCE, H_NCOL };
 constexpr double HOT_WAITING = -2.0;    // (any other contact not attached: -1)
+
+// the sums of a contact loop (scan(), scan_thermal(), scan_hot()), a local
+// of the loop that the compiler keeps in registers
+struct LoopSums {
+  double f = 0.0, e = 0.0, s = 0.0, natt = 0.0, ncount;
+  explicit LoopSums(double n) : ncount(n) {}
+  // an attached contact with stretch s_ and force fc: the force on its
+  // atom (fdi: the atom's force component along dir) and its terms
+  void add(double *fdi, double fc, double s_)
+  {
+    *fdi -= fc;
+    f += fc;
+    e += fc * s_;
+    s += s_;
+    natt += 1.0;
+  }
+};
 constexpr double NOT_A_CONTACT = std::numeric_limits<double>::quiet_NaN();
 // the bit of group all (Group: group 0; set in the mask of every atom
 // LAMMPS creates, cleared only by commands such as group all subtract)
@@ -659,12 +676,12 @@ long FixEQContacts::scan(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks)
   const std::size_t width = ncol;
   double *const rows = nlocal > 0 ? state[0] : nullptr;    // nmax x ncol in one block
   double *const fd = nlocal > 0 ? atom->f[0] + idir : nullptr;
-  double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = ALL ? nlocal : 0.0;
+  LoopSums sum(ALL ? nlocal : 0.0);
   long nb = 0;
   for (int i = 0; i < nlocal; i++) {
     if (!ALL) {
       if (!(mask[i] & bit)) continue;
-      ncount += 1.0;
+      sum.ncount += 1.0;
     }
     double *const st = rows + i * width;
     const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
@@ -683,14 +700,10 @@ long FixEQContacts::scan(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks)
     }
     const double fc = st[CS_STIFFNESS] * s;
     st[CS_FORCE] = fc;
-    fd[3 * i] -= fc;
-    fsum += fc;
-    esum += fc * s;
-    ssum += s;
-    natt += 1.0;
+    sum.add(&fd[3 * i], fc, s);
   }
   local_breaks_total += nb;
-  store_sums(fsum, esum, ssum, natt, ncount);
+  store_sums(sum.f, sum.e, sum.s, sum.natt, sum.ncount);
   return nb;
 }
 
@@ -734,12 +747,12 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
   const std::size_t width = ncol;
   double *const rows = nlocal > 0 ? state[0] : nullptr;    // nmax x ncol in one block
   double *const fd = nlocal > 0 ? atom->f[0] + idir : nullptr;
-  double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = ALL ? nlocal : 0.0;
+  LoopSums sum(ALL ? nlocal : 0.0);
   long nb = 0;
   for (int i = 0; i < nlocal; i++) {
     if (!ALL) {
       if (!(mask[i] & bit)) continue;
-      ncount += 1.0;
+      sum.ncount += 1.0;
     }
     double *const st = rows + i * width;
     const double xu = ORTHOGONAL ? unwrap.orthogonal_coordinate(i) : unwrap(i);
@@ -755,14 +768,10 @@ long FixEQContacts::scan_thermal(const EQUtil::Unwrap &unwrap_arg, bool allow_br
     }
     const double fc = st[CS_STIFFNESS] * s;
     st[CS_FORCE] = fc;
-    fd[3 * i] -= fc;
-    fsum += fc;
-    esum += fc * s;
-    ssum += s;
-    natt += 1.0;
+    sum.add(&fd[3 * i], fc, s);
   }
   local_breaks_total += nb;
-  store_sums(fsum, esum, ssum, natt, ncount);
+  store_sums(sum.f, sum.e, sum.s, sum.natt, sum.ncount);
   return nb;
 }
 
@@ -794,33 +803,34 @@ long FixEQContacts::scan_hot(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks
   const double *const cold = nlocal > 0 ? state[0] : nullptr;    // nmax x ncol in one block
   const std::size_t width = ncol;
   double *const fd = nlocal > 0 ? atom->f[0] + idir : nullptr;
-  double fsum = 0.0, esum = 0.0, ssum = 0.0, natt = 0.0, ncount = ALL ? nlocal : 0.0;
+  LoopSums sum(ALL ? nlocal : 0.0);
   long nb = 0;
   double sblock[BLOCK];
   for (int i0 = 0; i0 < nlocal; i0 += BLOCK) {
     const int n = std::min(BLOCK, nlocal - i0);
-    uint32_t off = 0;
-    for (int k = 0; k < n; k++) {
+    // (no common step in a set-up or minimization: every contact off it)
+    uint32_t off = quick ? 0u : ~0u;
+    for (int k = 0; quick && k < n; k++) {
       const int j = i0 + k;
       const double *const h = rows + static_cast<std::size_t>(j) * H_NCOL;
       const double s = (ORTHOGONAL ? unwrap.orthogonal_coordinate(j) : unwrap(j)) - h[H_ANCHOR];
-      // (&: both tests without a branch between them)
-      const bool common = quick & (std::fabs(s) < std::min(h[H_LIMIT], reach)) &
-          (t_end < h[H_RUNOUT]);
       sblock[k] = s;
-      off |= static_cast<uint32_t>(!common) << k;
-      if (FEQ_UNLIKELY(!common) && h[H_LIMIT] != HOT_WAITING && (ALL || (mask[j] & bit))) {
-        const double *const st = cold + j * width;    // (15 doubles: up to 3 cache lines)
-        FEQ_PREFETCH(st);
-        FEQ_PREFETCH(st + 7);
-        FEQ_PREFETCH(st + width - 1);
+      const bool common = std::fabs(s) < std::min(h[H_LIMIT], reach) && t_end < h[H_RUNOUT];
+      if (FEQ_UNLIKELY(!common)) {
+        off |= 1u << k;
+        if (h[H_LIMIT] != HOT_WAITING && (ALL || (mask[j] & bit))) {
+          const double *const st = cold + j * width;    // (15 doubles: up to 3 cache lines)
+          FEQ_PREFETCH(st);
+          FEQ_PREFETCH(st + 7);
+          FEQ_PREFETCH(st + width - 1);
+        }
       }
     }
     for (int k = 0; k < n; k++) {
       const int i = i0 + k;
       if (!ALL) {
         if (!(mask[i] & bit)) continue;
-        ncount += 1.0;
+        sum.ncount += 1.0;
       }
       double *const h = rows + static_cast<std::size_t>(i) * H_NCOL;
       double s = sblock[k];
@@ -843,15 +853,11 @@ long FixEQContacts::scan_hot(const EQUtil::Unwrap &unwrap_arg, bool allow_breaks
       }
       const double fc = h[H_STIFFNESS] * s;
       h[H_FORCE] = fc;
-      fd[3 * i] -= fc;
-      fsum += fc;
-      esum += fc * s;
-      ssum += s;
-      natt += 1.0;
+      sum.add(&fd[3 * i], fc, s);
     }
   }
   local_breaks_total += nb;
-  store_sums(fsum, esum, ssum, natt, ncount);
+  store_sums(sum.f, sum.e, sum.s, sum.natt, sum.ncount);
   return nb;
 }
 
