@@ -295,7 +295,9 @@ def test_detached_contacts_stay_detached_through_runs_and_restarts(tmp_path):
         (dref / "dump.final").read_text().split("ITEM: ATOMS")[-1]
 
 
-AGES = """
+# 240 contacts on a hex lattice, re-forming in [-0.2, 0.2]: the start of
+# the inputs below (the keywords of fix c follow)
+HEX240 = """
 units lj
 dimension 2
 atom_style atomic
@@ -307,7 +309,9 @@ create_atoms 1 box
 mass 1 1.0
 comm_modify cutoff 0.5
 fix c all eq/contacts 1.0 4711 threshold uniform 0.75 1.25 reform uniform -0.2 0.2 &
-    thermal 0.1 1.0 1.0 aging log 0.2 1.0 rest 3.0 crossing ${crossing}
+"""
+
+AGES = HEX240 + """    thermal 0.1 1.0 1.0 aging log 0.2 1.0 rest 3.0 crossing ${crossing}
 fix slide all move linear 0.05 0.0 0.0 units box
 timestep 0.25
 variable clock equal f_c[9]
@@ -377,19 +381,7 @@ def test_formation_times_follow_the_breaks(tmp_path, crossing):
     assert counted > 0.9 * 400 * n    # almost every contact within a bound, almost always
 
 
-RESPA = """
-units lj
-dimension 2
-atom_style atomic
-boundary p p p
-lattice hex 1.1547005383792515
-region box block 0 10 0 12 -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-mass 1 1.0
-comm_modify cutoff 0.5
-fix c all eq/contacts 1.0 4711 threshold uniform 0.75 1.25 reform uniform -0.2 0.2 &
-    thermal 0.1 1.0 1.0 aging log 0.2 1.0 delay exp 0.5 crossing exact
+RESPA = HEX240 + """    thermal 0.1 1.0 1.0 aging log 0.2 1.0 delay exp 0.5 crossing exact
 velocity all set 0.05 0.0 0.0 units box
 fix slide all nve
 fix hold all setforce 0.0 0.0 0.0
